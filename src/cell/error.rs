@@ -1,0 +1,46 @@
+//! The one error type for unusable input.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Input that cannot be used: names the file, the body (when known) and the field.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub struct InputError {
+    /// The file read.
+    pub file: PathBuf,
+    /// The body (robot or obstacle) concerned, when there is one.
+    pub body: Option<String>,
+    /// Path of the field in the document, e.g. `robots[0].trajectory[3].t`.
+    pub field: String,
+    /// Why it cannot be used.
+    pub reason: String,
+}
+
+impl InputError {
+    pub(crate) fn new(
+        file: &std::path::Path,
+        body: Option<&str>,
+        field: impl Into<String>,
+        reason: impl fmt::Display,
+    ) -> Self {
+        InputError {
+            file: file.to_path_buf(),
+            body: body.map(str::to_owned),
+            field: field.into(),
+            reason: reason.to_string(),
+        }
+    }
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: ", self.file.display())?;
+        if let Some(body) = &self.body {
+            write!(f, "body \"{body}\", ")?;
+        }
+        if !self.field.is_empty() {
+            write!(f, "field `{}`: ", self.field)?;
+        }
+        write!(f, "{}", self.reason)
+    }
+}

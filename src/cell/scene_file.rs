@@ -1,0 +1,208 @@
+//! Reading a scene file (contract section 1) into a [`Scene`].
+
+use super::InputError;
+use crate::collision::{Body, Scene};
+use crate::geometry::{ConvexPolygon, PolygonError, Vec2};
+use crate::motion::{Motion, Sample, Trajectory, TrajectoryError};
+use serde::Deserialize;
+use std::collections::HashSet;
+use std::path::Path;
+
+/// δ when the scene gives none.
+pub const DEFAULT_DELTA: f64 = 0.001;
+
+#[derive(Deserialize)]
+struct RawScene {
+    #[serde(default)]
+    delta: Option<f64>,
+    robots: Vec<RawRobot>,
+    #[serde(default)]
+    obstacles: Vec<RawObstacle>,
+}
+
+#[derive(Deserialize)]
+struct RawRobot {
+    name: String,
+    shape: Vec<[f64; 2]>,
+    trajectory: Vec<RawSample>,
+}
+
+#[derive(Deserialize)]
+struct RawSample {
+    t: f64,
+    x: f64,
+    y: f64,
+    #[serde(default)]
+    vx: Option<f64>,
+    #[serde(default)]
+    vy: Option<f64>,
+    #[serde(default)]
+    theta: Option<f64>,
+    #[serde(default)]
+    omega: Option<f64>,
+}
+
+#[derive(Deserialize)]
+struct RawObstacle {
+    name: String,
+    shape: Vec<[f64; 2]>,
+}
+
+/// A scene read from a file, with the repairs made on the way (one line each).
+#[derive(Clone, Debug)]
+pub struct LoadedScene {
+    /// The scene.
+    pub scene: Scene,
+    /// Warnings for stderr: clockwise shapes reversed, vertices removed.
+    pub warnings: Vec<String>,
+}
+
+/// Reads and validates the scene file at `path`.
+pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
+    parse_scene(&text, path)
+}
+
+/// Parses and validates a scene document; `file` is only used to name it in messages.
+pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let raw: RawScene = serde_path_to_error::deserialize(de).map_err(|e| {
+        let inner = e.inner();
+        let reason = format!("{inner}");
+        InputError::new(file, None, e.path().to_string(), reason)
+    })?;
+    let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
+    if !(delta.is_finite() && delta > 0.0) {
+        return Err(InputError::new(
+            file,
+            None,
+            "delta",
+            format!("must be a positive number, got {delta}"),
+        ));
+    }
+    let mut warnings = Vec::new();
+    let mut names = HashSet::new();
+    let mut bodies = Vec::with_capacity(raw.robots.len() + raw.obstacles.len());
+    for (k, r) in raw.robots.iter().enumerate() {
+        let at = format!("robots[{k}]");
+        check_name(file, &r.name, &at, &mut names)?;
+        let shape = polygon(
+            file,
+            &r.name,
+            &format!("{at}.shape"),
+            &r.shape,
+            &mut warnings,
+        )?;
+        let trajectory = trajectory(&r.trajectory).map_err(|e| {
+            let field = match &e {
+                TrajectoryError::Empty => format!("{at}.trajectory"),
+                TrajectoryError::NotFinite { sample, field } => {
+                    format!("{at}.trajectory[{sample}].{field}")
+                }
+                TrajectoryError::NotIncreasing { sample, .. } => {
+                    format!("{at}.trajectory[{sample}].t")
+                }
+            };
+            InputError::new(file, Some(&r.name), field, e)
+        })?;
+        bodies.push(Body {
+            name: r.name.clone(),
+            shape,
+            motion: Motion::Sampled(trajectory),
+        });
+    }
+    for (k, o) in raw.obstacles.iter().enumerate() {
+        let at = format!("obstacles[{k}]");
+        check_name(file, &o.name, &at, &mut names)?;
+        let shape = polygon(
+            file,
+            &o.name,
+            &format!("{at}.shape"),
+            &o.shape,
+            &mut warnings,
+        )?;
+        bodies.push(Body::obstacle(o.name.clone(), &shape));
+    }
+    Ok(LoadedScene {
+        scene: Scene { delta, bodies },
+        warnings,
+    })
+}
+
+fn check_name(
+    file: &Path,
+    name: &str,
+    at: &str,
+    seen: &mut HashSet<String>,
+) -> Result<(), InputError> {
+    if name.is_empty() {
+        return Err(InputError::new(
+            file,
+            None,
+            format!("{at}.name"),
+            "a body needs a non-empty name",
+        ));
+    }
+    if !seen.insert(name.to_owned()) {
+        return Err(InputError::new(
+            file,
+            Some(name),
+            format!("{at}.name"),
+            "another body has the same name",
+        ));
+    }
+    Ok(())
+}
+
+fn polygon(
+    file: &Path,
+    body: &str,
+    field: &str,
+    points: &[[f64; 2]],
+    warnings: &mut Vec<String>,
+) -> Result<ConvexPolygon, InputError> {
+    let (shape, repairs) = ConvexPolygon::new(points).map_err(|e| {
+        let field = match &e {
+            PolygonError::NotFinite { vertex, .. } | PolygonError::NotConvex { vertex } => {
+                format!("{field}[{vertex}]")
+            }
+            _ => field.to_owned(),
+        };
+        InputError::new(file, Some(body), field, e)
+    })?;
+    for r in repairs {
+        warnings.push(format!(
+            "{}: body \"{body}\", field `{field}`: {r}",
+            file.display()
+        ));
+    }
+    Ok(shape)
+}
+
+/// Samples with defaults filled in: theta 0, velocities derived from the positions.
+fn trajectory(raw: &[RawSample]) -> Result<Trajectory, TrajectoryError> {
+    let mut samples: Vec<Sample> = raw
+        .iter()
+        .map(|s| Sample {
+            t: s.t,
+            pos: Vec2::new(s.x, s.y),
+            theta: s.theta.unwrap_or(0.0),
+            vel: Vec2::zeros(),
+            omega: 0.0,
+        })
+        .collect();
+    // Validate before deriving: derivation divides by time steps.
+    Trajectory::new(samples.clone())?;
+    for (k, s) in raw.iter().enumerate() {
+        let complete = s.vx.is_some() && s.vy.is_some() && s.omega.is_some();
+        let (v, w) = if complete {
+            (Vec2::zeros(), 0.0)
+        } else {
+            Trajectory::derived_velocity(&samples, k)
+        };
+        samples[k].vel = Vec2::new(s.vx.unwrap_or(v.x), s.vy.unwrap_or(v.y));
+        samples[k].omega = s.omega.unwrap_or(w);
+    }
+    Trajectory::new(samples)
+}

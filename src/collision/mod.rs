@@ -1,0 +1,17 @@
+//! The adaptive collision checker of Feyeux & Landry (2013).
+//!
+//! For every pair of bodies, the two time grids are merged; on each merged interval the
+//! Schwarzer-Saha-Latombe condition λ1 + λ2 < η(tl) + η(tu) − 2δ certifies the interval,
+//! or the interval is bisected (the paper's Table 1). η is the gap between bounding discs
+//! while they are farther apart than δ ([`eta`]), the exact polygon distance of the
+//! closest-feature walk otherwise. All pairs run in parallel; the earliest contact wins.
+
+mod check;
+mod eta;
+mod pair;
+mod scene;
+mod stats;
+
+pub use check::{check, CheckOptions, CheckReport, Contact};
+pub use scene::{Body, Scene};
+pub use stats::Stats;

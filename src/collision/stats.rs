@@ -1,0 +1,33 @@
+//! The counters of the paper's section 6.
+
+use std::ops::AddAssign;
+
+/// Work counters, summed over pairs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Stats {
+    /// Merged time intervals examined (the paper's "intervals").
+    pub intervals: u64,
+    /// Interval bisections (Table 1's splits, including the refinement of the contact time).
+    pub bisections: u64,
+    /// Exact distance computations (narrow phase), made when the bounding discs are closer
+    /// than δ.
+    pub narrow_phase_calls: u64,
+    /// Feature pairs visited by the closest-feature walk (the paper's "feature tests").
+    pub feature_steps: u64,
+    /// Walks stopped by the cycling guard and answered by the exact fallback.
+    pub walk_fallbacks: u64,
+    /// Intervals accepted at the limit of floating-point resolution, where the distance
+    /// stays within the distance tolerance of δ without a certificate or a witness.
+    pub grazing: u64,
+}
+
+impl AddAssign for Stats {
+    fn add_assign(&mut self, o: Stats) {
+        self.intervals += o.intervals;
+        self.bisections += o.bisections;
+        self.narrow_phase_calls += o.narrow_phase_calls;
+        self.feature_steps += o.feature_steps;
+        self.walk_fallbacks += o.walk_fallbacks;
+        self.grazing += o.grazing;
+    }
+}

@@ -1,0 +1,31 @@
+//! Convex polygons and the exact distance between two of them.
+//!
+//! * [`ConvexPolygon`]: a validated, counter-clockwise, strictly convex polygon.
+//! * [`Posed`]: a polygon placed in the world by a rigid transform, evaluated lazily so
+//!   that a closest-feature walk touches only the vertices it visits.
+//! * [`closest_features`]: the 2-D Lin-Canny closest-feature walk of Feyeux & Landry
+//!   (2013, section 5), warm-started and guarded against cycling.
+//! * [`brute_force_distance`]: the exact O(n·m) reference, used as the walk's fallback
+//!   and as the oracle of the tests.
+
+mod brute_force;
+mod feature;
+mod lin_canny;
+mod polygon;
+mod posed;
+mod segment;
+
+pub use brute_force::brute_force_distance;
+pub use feature::{Feature, FeaturePair};
+pub use lin_canny::{closest_features, Distance, WalkTolerances};
+pub use polygon::{ConvexPolygon, PolygonError, PolygonWarning};
+pub use posed::Posed;
+
+/// A point or vector of the plane.
+pub type Vec2 = nalgebra::Vector2<f64>;
+
+/// The z component of the cross product of two plane vectors.
+#[inline]
+pub fn cross(a: &Vec2, b: &Vec2) -> f64 {
+    a.x * b.y - a.y * b.x
+}

@@ -1,0 +1,292 @@
+//! The validated convex polygon.
+
+use super::{cross, Vec2};
+use std::f64::consts::TAU;
+
+/// Relative tolerance under which two vertices are the same point, or three are collinear
+/// (sine of the turning angle). Far below any meaningful geometry, far above rounding.
+const SHAPE_TOL: f64 = 1e-12;
+
+/// Why a vertex list is not a usable convex polygon. Indices are those of the input list.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PolygonError {
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y})")]
+    NotFinite {
+        /// Input index.
+        vertex: usize,
+        /// Its x.
+        x: f64,
+        /// Its y.
+        y: f64,
+    },
+    /// Fewer than three distinct vertices remain.
+    #[error("a polygon needs at least 3 distinct vertices, found {distinct}")]
+    TooFewVertices {
+        /// How many distinct vertices there are.
+        distinct: usize,
+    },
+    /// The vertices enclose no area (all collinear).
+    #[error("the vertices are collinear: the polygon has zero area")]
+    ZeroArea,
+    /// The polygon turns the wrong way at a vertex, or winds around more than once.
+    #[error("not convex at vertex {vertex}")]
+    NotConvex {
+        /// Input index of the offending vertex.
+        vertex: usize,
+    },
+}
+
+/// A repair made while validating; the caller reports it (the CLI prints it on stderr).
+#[derive(Clone, Debug, PartialEq)]
+pub enum PolygonWarning {
+    /// The vertices were clockwise and have been reversed.
+    Reversed,
+    /// A vertex repeating its predecessor was dropped (input index).
+    RepeatedVertex(usize),
+    /// A vertex on the straight line through its neighbours was dropped (input index).
+    CollinearVertex(usize),
+}
+
+impl std::fmt::Display for PolygonWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PolygonWarning::Reversed => write!(f, "vertices were clockwise; reversed"),
+            PolygonWarning::RepeatedVertex(i) => {
+                write!(f, "vertex {i} repeats its predecessor; removed")
+            }
+            PolygonWarning::CollinearVertex(i) => {
+                write!(f, "vertex {i} lies on the edge of its neighbours; removed")
+            }
+        }
+    }
+}
+
+/// A strictly convex polygon with counter-clockwise vertices, in its own frame.
+///
+/// Invariants (established by [`ConvexPolygon::new`]): at least three vertices, all
+/// finite, every turn strictly left, total turning exactly one revolution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvexPolygon {
+    vertices: Vec<Vec2>,
+    normals: Vec<Vec2>,
+    radius: f64,
+}
+
+impl ConvexPolygon {
+    /// Validates `points` (in order) and builds the polygon.
+    ///
+    /// Repeated and collinear vertices are removed and clockwise input is reversed; each
+    /// repair is returned as a warning. Errors name the offending input vertex.
+    pub fn new(points: &[[f64; 2]]) -> Result<(Self, Vec<PolygonWarning>), PolygonError> {
+        for (i, p) in points.iter().enumerate() {
+            if !p[0].is_finite() || !p[1].is_finite() {
+                return Err(PolygonError::NotFinite {
+                    vertex: i,
+                    x: p[0],
+                    y: p[1],
+                });
+            }
+        }
+        let mut warnings = Vec::new();
+        // (input index, point), consecutive duplicates removed (cyclically).
+        let magnitude = points
+            .iter()
+            .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+        let same_tol = SHAPE_TOL * magnitude;
+        let mut pts: Vec<(usize, Vec2)> = Vec::with_capacity(points.len());
+        for (i, p) in points.iter().enumerate() {
+            let v = Vec2::new(p[0], p[1]);
+            if pts.last().is_some_and(|(_, q)| (v - q).amax() <= same_tol) {
+                warnings.push(PolygonWarning::RepeatedVertex(i));
+            } else {
+                pts.push((i, v));
+            }
+        }
+        while pts.len() > 1 && (pts[0].1 - pts[pts.len() - 1].1).amax() <= same_tol {
+            let (i, _) = pts.pop().unwrap();
+            warnings.push(PolygonWarning::RepeatedVertex(i));
+        }
+        if pts.len() < 3 {
+            return Err(PolygonError::TooFewVertices {
+                distinct: pts.len(),
+            });
+        }
+        // Work relative to the first vertex so that far-away polygons keep their precision.
+        let origin = pts[0].1;
+        let area2: f64 = (0..pts.len())
+            .map(|k| cross(&(pts[k].1 - origin), &(pts[(k + 1) % pts.len()].1 - origin)))
+            .sum();
+        let extent = pts
+            .iter()
+            .fold(0.0f64, |m, (_, p)| m.max((p - origin).norm()));
+        if area2.abs() <= SHAPE_TOL * extent * extent {
+            return Err(PolygonError::ZeroArea);
+        }
+        if area2 < 0.0 {
+            pts.reverse();
+            warnings.push(PolygonWarning::Reversed);
+        }
+        // Drop collinear vertices until none is left; a reflex or cusp vertex is an error.
+        let mut k = 0;
+        let mut stable = 0;
+        while stable < pts.len() {
+            if pts.len() < 3 {
+                return Err(PolygonError::ZeroArea);
+            }
+            let n = pts.len();
+            let (prev, (idx, cur), next) = (pts[(k + n - 1) % n].1, pts[k % n], pts[(k + 1) % n].1);
+            let e0 = cur - prev;
+            let e1 = next - cur;
+            let sine = cross(&e0, &e1) / (e0.norm() * e1.norm());
+            if sine.abs() <= SHAPE_TOL && e0.dot(&e1) > 0.0 {
+                warnings.push(PolygonWarning::CollinearVertex(idx));
+                pts.remove(k % n);
+                stable = 0;
+                continue;
+            }
+            if sine <= SHAPE_TOL {
+                return Err(PolygonError::NotConvex { vertex: idx });
+            }
+            k = (k + 1) % n;
+            stable += 1;
+        }
+        // All turns are left; a star polygon also turns only left but winds several times.
+        let n = pts.len();
+        let turning: f64 = (0..n)
+            .map(|k| {
+                let e0 = pts[k].1 - pts[(k + n - 1) % n].1;
+                let e1 = pts[(k + 1) % n].1 - pts[k].1;
+                cross(&e0, &e1).atan2(e0.dot(&e1))
+            })
+            .sum();
+        if turning > TAU * 1.5 {
+            return Err(PolygonError::NotConvex { vertex: pts[0].0 });
+        }
+        let vertices: Vec<Vec2> = pts.into_iter().map(|(_, p)| p).collect();
+        Ok((Self::from_ccw(vertices), warnings))
+    }
+
+    /// Builds from vertices already known to be strictly convex and counter-clockwise.
+    fn from_ccw(vertices: Vec<Vec2>) -> Self {
+        let n = vertices.len();
+        let normals = (0..n)
+            .map(|i| {
+                let e = vertices[(i + 1) % n] - vertices[i];
+                Vec2::new(e.y, -e.x).normalize()
+            })
+            .collect();
+        let radius = vertices.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+        ConvexPolygon {
+            vertices,
+            normals,
+            radius,
+        }
+    }
+
+    /// The same polygon with `offset` subtracted from every vertex: its frame origin moves to
+    /// `offset`. Obstacles use it to centre their bounding disc on their own centroid.
+    pub fn translated(&self, offset: &Vec2) -> Self {
+        Self::from_ccw(self.vertices.iter().map(|v| v - offset).collect())
+    }
+
+    /// Area centroid.
+    pub fn centroid(&self) -> Vec2 {
+        let o = self.vertices[0];
+        let (mut a, mut c) = (0.0, Vec2::zeros());
+        for i in 1..self.len() - 1 {
+            let (p, q) = (self.vertices[i] - o, self.vertices[i + 1] - o);
+            let w = cross(&p, &q);
+            a += w;
+            c += (p + q) * w;
+        }
+        o + c / (3.0 * a)
+    }
+
+    /// Counter-clockwise vertices, in the polygon's frame.
+    #[inline]
+    pub fn vertices(&self) -> &[Vec2] {
+        &self.vertices
+    }
+
+    /// Unit outward normal of each edge `i` (vertex `i` to vertex `i + 1`).
+    #[inline]
+    pub fn normals(&self) -> &[Vec2] {
+        &self.normals
+    }
+
+    /// Number of vertices.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// Always false: a validated polygon has at least three vertices.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Rmax of the paper's eq. (13): the largest distance from the frame origin to a vertex,
+    /// so the disc of this radius about the origin contains the polygon in every rotation.
+    #[inline]
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_is_accepted_without_warnings() {
+        let (p, w) = ConvexPolygon::new(&[[0., 0.], [1., 0.], [1., 1.], [0., 1.]]).unwrap();
+        assert_eq!(p.len(), 4);
+        assert!(w.is_empty());
+        assert!((p.centroid() - Vec2::new(0.5, 0.5)).norm() < 1e-15);
+        assert!((p.radius() - 2f64.sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn clockwise_repeated_and_collinear_are_repaired() {
+        let (p, w) =
+            ConvexPolygon::new(&[[0., 0.], [0., 1.], [0., 1.], [1., 1.], [1., 0.5], [1., 0.]])
+                .unwrap();
+        assert_eq!(p.len(), 4);
+        assert!(w.contains(&PolygonWarning::Reversed));
+        assert!(w.contains(&PolygonWarning::RepeatedVertex(2)));
+        assert!(w.contains(&PolygonWarning::CollinearVertex(4)));
+    }
+
+    #[test]
+    fn bad_polygons_are_refused_with_the_vertex() {
+        assert!(matches!(
+            ConvexPolygon::new(&[[0., 0.], [f64::NAN, 0.], [0., 1.]]),
+            Err(PolygonError::NotFinite { vertex: 1, .. })
+        ));
+        assert_eq!(
+            ConvexPolygon::new(&[[0., 0.], [1., 0.], [1., 0.]]).unwrap_err(),
+            PolygonError::TooFewVertices { distinct: 2 }
+        );
+        assert_eq!(
+            ConvexPolygon::new(&[[0., 0.], [1., 0.], [2., 0.]]).unwrap_err(),
+            PolygonError::ZeroArea
+        );
+        assert_eq!(
+            ConvexPolygon::new(&[[0., 0.], [2., 0.], [1., 0.5], [2., 2.], [0., 2.]]).unwrap_err(),
+            PolygonError::NotConvex { vertex: 2 }
+        );
+        // A pentagram turns left at every vertex but winds twice.
+        let star: Vec<[f64; 2]> = (0..5)
+            .map(|k| {
+                let a = k as f64 * 4.0 * std::f64::consts::PI / 5.0;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        assert!(matches!(
+            ConvexPolygon::new(&star),
+            Err(PolygonError::NotConvex { .. })
+        ));
+    }
+}

@@ -1,0 +1,259 @@
+//! Sampled trajectories and the motion they define.
+
+use crate::geometry::Vec2;
+
+/// One time sample of a robot's trajectory, as in the scene file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Time stamp.
+    pub t: f64,
+    /// Position of G, the body origin.
+    pub pos: Vec2,
+    /// Rotation angle, radians counter-clockwise.
+    pub theta: f64,
+    /// Velocity of G as given (used only by the paper's bound).
+    pub vel: Vec2,
+    /// Angular velocity as given (used only by the paper's bound).
+    pub omega: f64,
+}
+
+/// A rigid pose: position of G and rotation angle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Position of G.
+    pub pos: Vec2,
+    /// Rotation angle, radians counter-clockwise.
+    pub theta: f64,
+}
+
+/// Why a list of samples is not a trajectory. `sample` is the index in the input.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TrajectoryError {
+    /// No samples at all.
+    #[error("a trajectory needs at least one sample")]
+    Empty,
+    /// A value is NaN or infinite.
+    #[error("sample {sample}: `{field}` is not a finite number")]
+    NotFinite {
+        /// Input index.
+        sample: usize,
+        /// Field name as in the scene file.
+        field: &'static str,
+    },
+    /// Time stamps do not strictly increase.
+    #[error("sample {sample}: `t` = {t} does not come after the previous {previous}")]
+    NotIncreasing {
+        /// Input index.
+        sample: usize,
+        /// Its time.
+        t: f64,
+        /// The previous sample's time.
+        previous: f64,
+    },
+}
+
+/// A validated trajectory: at least one sample, finite values, strictly increasing times.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trajectory {
+    samples: Vec<Sample>,
+}
+
+impl Trajectory {
+    /// Validates the samples.
+    pub fn new(samples: Vec<Sample>) -> Result<Self, TrajectoryError> {
+        if samples.is_empty() {
+            return Err(TrajectoryError::Empty);
+        }
+        for (k, s) in samples.iter().enumerate() {
+            let fields = [
+                ("t", s.t),
+                ("x", s.pos.x),
+                ("y", s.pos.y),
+                ("theta", s.theta),
+                ("vx", s.vel.x),
+                ("vy", s.vel.y),
+                ("omega", s.omega),
+            ];
+            if let Some((field, _)) = fields.iter().find(|(_, v)| !v.is_finite()) {
+                return Err(TrajectoryError::NotFinite { sample: k, field });
+            }
+            if k > 0 && s.t <= samples[k - 1].t {
+                return Err(TrajectoryError::NotIncreasing {
+                    sample: k,
+                    t: s.t,
+                    previous: samples[k - 1].t,
+                });
+            }
+        }
+        Ok(Trajectory { samples })
+    }
+
+    /// The samples, in time order.
+    pub fn samples(&self) -> &[Sample] {
+        &self.samples
+    }
+
+    /// Index `k` of the segment [t_k, t_{k+1}] that holds `t`, or `None` outside the samples.
+    #[inline]
+    fn segment(&self, t: f64) -> Option<usize> {
+        let k = self.samples.partition_point(|s| s.t <= t);
+        (k > 0 && k < self.samples.len()).then(|| k - 1)
+    }
+
+    /// The pose at time `t`: linear interpolation between samples; before the first sample
+    /// the first pose and after the last the last pose (the paper's eqs. 4-5).
+    pub fn pose_at(&self, t: f64) -> Pose {
+        let s = &self.samples;
+        match self.segment(t) {
+            Some(k) => {
+                let (p, q) = (&s[k], &s[k + 1]);
+                let u = (t - p.t) / (q.t - p.t);
+                Pose {
+                    pos: p.pos + (q.pos - p.pos) * u,
+                    theta: p.theta + (q.theta - p.theta) * u,
+                }
+            }
+            None => {
+                let p = if t < s[0].t { &s[0] } else { &s[s.len() - 1] };
+                Pose {
+                    pos: p.pos,
+                    theta: p.theta,
+                }
+            }
+        }
+    }
+
+    /// The given velocities at `t`, interpolated linearly between samples; zero outside the
+    /// samples, where the robot rests. Only the paper's bound uses them.
+    pub fn velocity_at(&self, t: f64) -> (Vec2, f64) {
+        let s = &self.samples;
+        match self.segment(t) {
+            Some(k) => {
+                let (p, q) = (&s[k], &s[k + 1]);
+                let u = (t - p.t) / (q.t - p.t);
+                (
+                    p.vel + (q.vel - p.vel) * u,
+                    p.omega + (q.omega - p.omega) * u,
+                )
+            }
+            None if s.len() == 1 || t < s[0].t || t > s[s.len() - 1].t => (Vec2::zeros(), 0.0),
+            None => (s[s.len() - 1].vel, s[s.len() - 1].omega),
+        }
+    }
+
+    /// Velocity and angular velocity consistent with the interpolated positions: the
+    /// average of the slopes of the two segments that meet at each sample. For samples
+    /// whose velocities the input left out.
+    pub fn derived_velocity(samples: &[Sample], k: usize) -> (Vec2, f64) {
+        let slope = |i: usize| {
+            let (p, q) = (&samples[i], &samples[i + 1]);
+            let dt = q.t - p.t;
+            ((q.pos - p.pos) / dt, (q.theta - p.theta) / dt)
+        };
+        let n = samples.len();
+        match (k > 0, k + 1 < n) {
+            (true, true) => {
+                let ((v0, w0), (v1, w1)) = (slope(k - 1), slope(k));
+                ((v0 + v1) * 0.5, 0.5 * (w0 + w1))
+            }
+            (true, false) => slope(k - 1),
+            (false, true) => slope(k),
+            (false, false) => (Vec2::zeros(), 0.0),
+        }
+    }
+}
+
+/// How a body moves: along a sampled trajectory (robots) or not at all (obstacles).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Motion {
+    /// A robot's sampled trajectory.
+    Sampled(Trajectory),
+    /// A body that never moves.
+    Fixed(Pose),
+}
+
+impl Motion {
+    /// Pose at time `t`.
+    #[inline]
+    pub fn pose_at(&self, t: f64) -> Pose {
+        match self {
+            Motion::Sampled(tr) => tr.pose_at(t),
+            Motion::Fixed(p) => *p,
+        }
+    }
+
+    /// Given velocity and angular velocity at `t` (zero for a fixed body).
+    #[inline]
+    pub fn velocity_at(&self, t: f64) -> (Vec2, f64) {
+        match self {
+            Motion::Sampled(tr) => tr.velocity_at(t),
+            Motion::Fixed(_) => (Vec2::zeros(), 0.0),
+        }
+    }
+
+    /// Sample times: the ends of the pieces on which the pose is linear in time.
+    pub fn times(&self) -> impl Iterator<Item = f64> + '_ {
+        let samples = match self {
+            Motion::Sampled(tr) => tr.samples(),
+            Motion::Fixed(_) => &[],
+        };
+        samples.iter().map(|s| s.t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(t: f64, x: f64, theta: f64) -> Sample {
+        Sample {
+            t,
+            pos: Vec2::new(x, 0.0),
+            theta,
+            vel: Vec2::new(1.0, 0.0),
+            omega: 0.0,
+        }
+    }
+
+    #[test]
+    fn interpolates_and_clamps() {
+        let tr = Trajectory::new(vec![sample(1.0, 0.0, 0.0), sample(3.0, 4.0, 1.0)]).unwrap();
+        assert_eq!(tr.pose_at(2.0).pos.x, 2.0);
+        assert_eq!(tr.pose_at(2.0).theta, 0.5);
+        assert_eq!(tr.pose_at(0.0).pos.x, 0.0);
+        assert_eq!(tr.pose_at(9.0).pos.x, 4.0);
+        assert_eq!(tr.pose_at(3.0).pos.x, 4.0);
+        assert_eq!(tr.velocity_at(0.0).0.x, 0.0);
+        assert_eq!(tr.velocity_at(2.0).0.x, 1.0);
+    }
+
+    #[test]
+    fn refuses_bad_times() {
+        let e = Trajectory::new(vec![sample(1.0, 0.0, 0.0), sample(1.0, 4.0, 1.0)]).unwrap_err();
+        assert!(matches!(
+            e,
+            TrajectoryError::NotIncreasing { sample: 1, .. }
+        ));
+        let e = Trajectory::new(vec![sample(f64::NAN, 0.0, 0.0)]).unwrap_err();
+        assert_eq!(
+            e,
+            TrajectoryError::NotFinite {
+                sample: 0,
+                field: "t"
+            }
+        );
+        assert_eq!(Trajectory::new(vec![]).unwrap_err(), TrajectoryError::Empty);
+    }
+
+    #[test]
+    fn derived_velocity_matches_the_slopes() {
+        let s = [
+            sample(0.0, 0.0, 0.0),
+            sample(1.0, 2.0, 0.0),
+            sample(2.0, 6.0, 1.0),
+        ];
+        assert_eq!(Trajectory::derived_velocity(&s, 0).0.x, 2.0);
+        assert_eq!(Trajectory::derived_velocity(&s, 1).0.x, 3.0);
+        assert_eq!(Trajectory::derived_velocity(&s, 2).1, 1.0);
+    }
+}
