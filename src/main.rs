@@ -88,7 +88,11 @@ fn main() -> ExitCode {
     }
 }
 
-fn run_check(path: &PathBuf, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
+fn run_check(
+    path: &std::path::Path,
+    json: bool,
+    opts: &CheckOptions,
+) -> Result<ExitCode, InputError> {
     let loaded = load_scene(path)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");

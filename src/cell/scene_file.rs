@@ -68,9 +68,9 @@ pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     let de = &mut serde_json::Deserializer::from_str(text);
     let raw: RawScene = serde_path_to_error::deserialize(de).map_err(|e| {
-        let inner = e.inner();
-        let reason = format!("{inner}");
-        InputError::new(file, None, e.path().to_string(), reason)
+        let field = e.path().to_string();
+        let body = body_named_by(text, &field);
+        InputError::new(file, body.as_deref(), field, e.inner())
     })?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
     if !(delta.is_finite() && delta > 0.0) {
@@ -128,6 +128,15 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
         scene: Scene { delta, bodies },
         warnings,
     })
+}
+
+/// The name of the robot or obstacle that a field path such as `robots[2].shape` points
+/// into, when the document is valid enough JSON to find it.
+fn body_named_by(text: &str, field: &str) -> Option<String> {
+    let (list, rest) = field.split_once('[')?;
+    let index: usize = rest.split_once(']')?.0.parse().ok()?;
+    let doc: serde_json::Value = serde_json::from_str(text).ok()?;
+    Some(doc.get(list)?.get(index)?.get("name")?.as_str()?.to_owned())
 }
 
 fn check_name(

@@ -81,9 +81,7 @@ pub struct CheckReport {
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let horizon = scene.horizon();
     let delta = opts.delta.unwrap_or(scene.delta);
-    let time_tol = opts
-        .time_tol
-        .unwrap_or_else(|| 1e-6 * (horizon.1 - horizon.0));
+    let time_tol = opts.time_tol.unwrap_or(1e-6 * (horizon.1 - horizon.0));
     let settings = PairSettings {
         delta,
         dist_tol: opts.dist_tol * delta,

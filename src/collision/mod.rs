@@ -3,7 +3,7 @@
 //! For every pair of bodies, the two time grids are merged; on each merged interval the
 //! Schwarzer-Saha-Latombe condition λ1 + λ2 < η(tl) + η(tu) − 2δ certifies the interval,
 //! or the interval is bisected (the paper's Table 1). η is the gap between bounding discs
-//! while they are farther apart than δ ([`eta`]), the exact polygon distance of the
+//! while they are farther apart than δ, the exact polygon distance of the
 //! closest-feature walk otherwise. All pairs run in parallel; the earliest contact wins.
 
 mod check;
