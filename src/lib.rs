@@ -22,6 +22,8 @@
 //! assert!(report.first_contact.unwrap().time < 0.5);
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod cell;
 pub mod collision;
 pub mod geometry;

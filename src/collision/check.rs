@@ -7,6 +7,9 @@ use crate::motion::BoundKind;
 use rayon::prelude::*;
 use serde::Serialize;
 
+/// Scenes with fewer pairs are checked on the calling thread.
+const PARALLEL_MIN_PAIRS: usize = 4;
+
 /// How to check a scene.
 #[derive(Clone, Copy, Debug)]
 pub struct CheckOptions {
@@ -22,6 +25,8 @@ pub struct CheckOptions {
     pub dist_tol: f64,
     /// Narrow-phase tolerances and limits.
     pub walk: WalkTolerances,
+    /// Also report each pair's counters ([`CheckReport::pair_stats`]).
+    pub per_pair: bool,
 }
 
 impl Default for CheckOptions {
@@ -32,6 +37,7 @@ impl Default for CheckOptions {
             time_tol: None,
             dist_tol: 1e-6,
             walk: WalkTolerances::default(),
+            per_pair: false,
         }
     }
 }
@@ -69,6 +75,20 @@ pub struct CheckReport {
     pub time_tol: f64,
     /// Number of body pairs checked.
     pub pairs: usize,
+    /// With [`CheckOptions::per_pair`]: each pair's share of `stats`, in report order.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pair_stats: Option<Vec<PairStats>>,
+}
+
+/// One pair's counters.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PairStats {
+    /// The pair, robot first.
+    pub bodies: [String; 2],
+    /// Its merged intervals in all (the paper's "71 intervals").
+    pub merged_intervals: usize,
+    /// Its share of the report's counters.
+    pub stats: Stats,
 }
 
 /// Checks every robot-robot and robot-obstacle pair of `scene` over its horizon.
@@ -91,18 +111,21 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     };
     let pairs = scene.pairs();
     let limit = SharedLimit::new();
-    let outcomes: Vec<_> = pairs
-        .par_iter()
-        .map(|&(i, j)| {
-            check_pair(
-                &scene.bodies[i],
-                &scene.bodies[j],
-                horizon,
-                &settings,
-                &limit,
-            )
-        })
-        .collect();
+    let run = |&(i, j): &(usize, usize)| {
+        check_pair(
+            &scene.bodies[i],
+            &scene.bodies[j],
+            horizon,
+            &settings,
+            &limit,
+        )
+    };
+    // Handing a few pairs to the thread pool costs more than checking them.
+    let outcomes: Vec<_> = if pairs.len() >= PARALLEL_MIN_PAIRS {
+        pairs.par_iter().map(run).collect()
+    } else {
+        pairs.iter().map(run).collect()
+    };
     // Earliest contact; ties go to the first pair in report order.
     let first = outcomes
         .iter()
@@ -110,19 +133,32 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .filter_map(|(o, p)| o.contact.map(|c| (c, p)))
         .min_by(|x, y| x.0.time.total_cmp(&y.0.time));
     let through = first.map_or(f64::INFINITY, |(c, _)| c.time);
+    let names =
+        |(i, j): (usize, usize)| [scene.bodies[i].name.clone(), scene.bodies[j].name.clone()];
     let mut stats = Stats::default();
     for o in &outcomes {
         stats += o.stats_through(through);
     }
+    let pair_stats = opts.per_pair.then(|| {
+        outcomes
+            .iter()
+            .zip(&pairs)
+            .map(|(o, &p)| PairStats {
+                bodies: names(p),
+                merged_intervals: o.merged_intervals,
+                stats: o.stats_through(through),
+            })
+            .collect()
+    });
     let safe_until = outcomes
         .iter()
         .map(|o| o.safe_until)
         .fold(horizon.1, f64::min);
     CheckReport {
         collision: first.is_some(),
-        first_contact: first.map(|(c, &(i, j))| Contact {
+        first_contact: first.map(|(c, &p)| Contact {
             time: c.time,
-            bodies: [scene.bodies[i].name.clone(), scene.bodies[j].name.clone()],
+            bodies: names(p),
             distance: c.distance,
             interval: c.interval,
         }),
@@ -132,5 +168,6 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         delta,
         time_tol,
         pairs: pairs.len(),
+        pair_stats,
     }
 }

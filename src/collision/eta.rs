@@ -2,7 +2,7 @@
 
 use super::{Body, Stats};
 use crate::geometry::{closest_features, FeaturePair, Posed, WalkTolerances};
-use crate::motion::Pose;
+use crate::motion::{Piece, Pose};
 
 /// A pair's state at one instant: both poses and η.
 #[derive(Clone, Copy, Debug)]
@@ -36,9 +36,10 @@ impl<'s> Eta<'s> {
 
     /// η(t): the gap between the bounding discs (eq. 13) while it is at least δ, else the
     /// exact distance from the closest-feature walk, warm-started from the previous call.
-    pub fn at(&mut self, t: f64, stats: &mut Stats) -> Instant {
-        let pose_a = self.a.motion.pose_at(t);
-        let pose_b = self.b.motion.pose_at(t);
+    /// `pieces` are the pieces of A's and B's motions that hold `t`.
+    pub fn at(&mut self, t: f64, pieces: &(Piece, Piece), stats: &mut Stats) -> Instant {
+        let pose_a = pieces.0.pose_at(t);
+        let pose_b = pieces.1.pose_at(t);
         // Work in a frame centred on A: far from the origin, positions lose digits but
         // their difference does not.
         let rel = pose_b.pos - pose_a.pos;

@@ -12,6 +12,6 @@ mod pair;
 mod scene;
 mod stats;
 
-pub use check::{check, CheckOptions, CheckReport, Contact};
+pub use check::{check, CheckOptions, CheckReport, Contact, PairStats};
 pub use scene::{Body, Scene};
 pub use stats::Stats;

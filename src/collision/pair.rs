@@ -3,7 +3,7 @@
 use super::eta::{Eta, Instant};
 use super::{Body, Stats};
 use crate::geometry::WalkTolerances;
-use crate::motion::{lambda, BoundKind};
+use crate::motion::{lambda, BoundKind, Piece};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Settings of a pair check, in the scene's units.
@@ -39,6 +39,8 @@ pub struct PairOutcome {
     pub contact: Option<PairContact>,
     /// End of the prefix certified free of contact.
     pub safe_until: f64,
+    /// Number of merged intervals of the pair over the whole horizon.
+    pub merged_intervals: usize,
     /// `(start of merged interval, counters before it)`, for every interval examined.
     log: Vec<(f64, Stats)>,
     /// All the work done.
@@ -107,10 +109,13 @@ pub fn check_pair(
     let mut eta = Eta::new(a, b, s.delta, s.walk);
     let mut stats = Stats::default();
     let mut log = Vec::with_capacity(grid.len());
-    let mut left = eta.at(grid[0], &mut stats);
+    let pieces_at = |t: f64| (a.motion.piece_at(t), b.motion.piece_at(t));
+    let mut left = eta.at(grid[0], &pieces_at(grid[0]), &mut stats);
+    let merged_intervals = grid.len() - 1;
     let outcome = |contact: Option<PairContact>, safe_until: f64, log, total| PairOutcome {
         contact,
         safe_until,
+        merged_intervals,
         log,
         total,
     };
@@ -129,8 +134,11 @@ pub fn check_pair(
         }
         log.push((left.t, stats));
         stats.intervals += 1;
-        let right = eta.at(t, &mut stats);
-        if let Err((witness, safe_until)) = adaptive(&mut eta, left, right, s, &mut stats) {
+        // Both motions are linear on the merged interval: one piece each serves all of it.
+        let pieces = pieces_at(0.5 * (left.t + t));
+        let right = eta.at(t, &pieces, &mut stats);
+        if let Err((witness, safe_until)) = adaptive(&mut eta, &pieces, left, right, s, &mut stats)
+        {
             limit.lower_to(witness.t);
             let contact = PairContact {
                 time: witness.t,
@@ -151,6 +159,7 @@ pub fn check_pair(
 /// and the end of the certified prefix, or `Ok` when the whole interval is certified.
 fn adaptive(
     eta: &mut Eta,
+    pieces: &(Piece, Piece),
     l: Instant,
     r: Instant,
     s: &PairSettings,
@@ -191,7 +200,7 @@ fn adaptive(
             }
         }
         stats.bisections += 1;
-        let m = eta.at(mid, stats);
+        let m = eta.at(mid, pieces, stats);
         stack.push((m, r));
         stack.push((l, m));
     }

@@ -13,9 +13,11 @@ use super::{brute_force_distance, Feature, FeaturePair, Posed, Vec2};
 /// Tolerances and limits of the walk.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WalkTolerances {
-    /// δc: how far (relative to the larger polygon radius) a point may lie outside a Voronoi
-    /// region and still count as inside. Stops the walk from oscillating between features
-    /// that are equally close.
+    /// δc: how far a point may lie outside a Voronoi region and still count as inside,
+    /// relative to its distance from the feature (so an angle, in radians). Stops the walk
+    /// from oscillating between features that are equally close. Relative, not absolute:
+    /// an absolute slack ε lets a nearly parallel edge hide a contact behind a distance of
+    /// about √(ε·edge length).
     pub feature_tol: f64,
     /// Sine of the angle under which two edges count as parallel.
     pub parallel_tol: f64,
@@ -80,7 +82,6 @@ pub fn closest_features(
         .filter(|w| valid(w.a, a) && valid(w.b, b))
         .unwrap_or_else(|| cold_start(a, b));
     let (mut fa, mut fb) = (start.a, start.b);
-    let len_tol = tol.feature_tol * a.shape.radius().max(b.shape.radius());
     let max_steps = tol.max_steps_per_vertex * (a.len() + b.len()) + 8;
     let mut steps = 0u32;
     while (steps as usize) < max_steps {
@@ -97,7 +98,8 @@ pub fn closest_features(
         if pa == pb {
             return result(0.0); // the features meet: the polygons touch or overlap
         }
-        match region(a, fa, &pb, len_tol) {
+        let slack = tol.feature_tol * (pb - pa).norm();
+        match region(a, fa, &pb, slack) {
             Region::Inside => {}
             Region::MoveTo(f) => {
                 fa = f;
@@ -112,7 +114,7 @@ pub fn closest_features(
                 None => return result(0.0), // a point of B inside A
             },
         }
-        match region(b, fb, &pa, len_tol) {
+        match region(b, fb, &pa, slack) {
             Region::Inside => {}
             Region::MoveTo(f) => {
                 fb = f;
