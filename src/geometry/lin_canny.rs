@@ -53,13 +53,14 @@ pub struct Distance {
     pub fell_back: bool,
 }
 
-/// Outcome of testing a point against the Voronoi region of a feature.
-enum Region {
-    Inside,
+/// What testing a point of the other polygon against a feature's Voronoi region decides.
+enum Step {
+    /// The point lies in the region: the feature stays.
+    Stay,
+    /// A region constraint is violated: move to the feature beyond it.
     MoveTo(Feature),
-    /// The point lies behind the edge's supporting line: inside the polygon, or in the
-    /// region of a feature the local walk cannot see.
-    Behind,
+    /// The point lies inside the polygon: the polygons overlap.
+    Overlap,
 }
 
 /// Exact distance between two convex polygons by the closest-feature walk.
@@ -99,35 +100,21 @@ pub fn closest_features(
             return result(0.0); // the features meet: the polygons touch or overlap
         }
         let slack = tol.feature_tol * (pb - pa).norm();
-        match region(a, fa, &pb, slack) {
-            Region::Inside => {}
-            Region::MoveTo(f) => {
+        match step(a, fa, &pb, slack) {
+            Step::Stay => {}
+            Step::MoveTo(f) => {
                 fa = f;
                 continue;
             }
-            Region::Behind => match outermost_edge(a, &pb) {
-                Some(e) if Feature::Edge(e) != fa => {
-                    fa = Feature::Edge(e);
-                    continue;
-                }
-                Some(_) => {}
-                None => return result(0.0), // a point of B inside A
-            },
+            Step::Overlap => return result(0.0),
         }
-        match region(b, fb, &pa, slack) {
-            Region::Inside => {}
-            Region::MoveTo(f) => {
+        match step(b, fb, &pa, slack) {
+            Step::Stay => {}
+            Step::MoveTo(f) => {
                 fb = f;
                 continue;
             }
-            Region::Behind => match outermost_edge(b, &pa) {
-                Some(e) if Feature::Edge(e) != fb => {
-                    fb = Feature::Edge(e);
-                    continue;
-                }
-                Some(_) => {}
-                None => return result(0.0), // a point of A inside B
-            },
+            Step::Overlap => return result(0.0),
         }
         return result((pb - pa).norm());
     }
@@ -185,7 +172,7 @@ fn feature_points(
 }
 
 /// Tests `q` against the Voronoi region of feature `f` of `p` (Tables 5-6).
-fn region(p: &Posed, f: Feature, q: &Vec2, tol: f64) -> Region {
+fn step(p: &Posed, f: Feature, q: &Vec2, tol: f64) -> Step {
     match f {
         Feature::Vertex(i) => {
             // The wedge between the normals of the two edges that meet at the vertex.
@@ -195,11 +182,11 @@ fn region(p: &Posed, f: Feature, q: &Vec2, tol: f64) -> Region {
             let back = -(q - v).dot(&before) / before.norm(); // > 0: beside the previous edge
             let ahead = (q - v).dot(&after) / after.norm(); // > 0: beside the next edge
             if back.max(ahead) <= tol {
-                Region::Inside
+                Step::Stay
             } else if back > ahead {
-                Region::MoveTo(Feature::Edge(p.prev(i)))
+                Step::MoveTo(Feature::Edge(p.prev(i)))
             } else {
-                Region::MoveTo(Feature::Edge(i))
+                Step::MoveTo(Feature::Edge(i))
             }
         }
         Feature::Edge(i) => {
@@ -209,13 +196,15 @@ fn region(p: &Posed, f: Feature, q: &Vec2, tol: f64) -> Region {
             let len = e.norm();
             let s = (q - v0).dot(&e) / len;
             if s < -tol {
-                Region::MoveTo(Feature::Vertex(i))
+                Step::MoveTo(Feature::Vertex(i))
             } else if s > len + tol {
-                Region::MoveTo(Feature::Vertex(p.next(i)))
+                Step::MoveTo(Feature::Vertex(p.next(i)))
             } else if p.normal(i).dot(&(q - v0)) < -tol {
-                Region::Behind
+                // Behind the edge's line: inside the polygon, or in the region of a feature
+                // the local walk cannot see ("find the closest feature").
+                outermost_edge(p, q).map_or(Step::Overlap, |e| Step::MoveTo(Feature::Edge(e)))
             } else {
-                Region::Inside
+                Step::Stay
             }
         }
     }
