@@ -1,18 +1,23 @@
 //! Property tests of the whole checker on random two-robot scenes (some with an obstacle),
-//! against an oracle written here: the pose interpolated by hand at thousands of instants
-//! (all sample times included) and the exact polygon distance by brute force.
+//! against the independent oracle of `common`: the pose interpolated by hand at thousands of
+//! instants (all sample times included) and the exact polygon distance by brute force.
 //!
 //! Dense sampling can miss a short contact but never invents one, so each property below is
 //! one the checker must satisfy whatever the sampling missed.
 
+mod common;
+
+use common::{
+    centroid, dot, draw, ellipse_shape, exact_distance, lerp_pose, place, polygon, pose_at,
+    radius_about, sub, unit_square, Shape,
+};
 use proptest::prelude::*;
-use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
 use rayon::{ThreadPool, ThreadPoolBuilder};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 use std::sync::OnceLock;
 use workcell::collision::{check, Body, CheckOptions, CheckReport, Scene};
-use workcell::geometry::{ConvexPolygon, Vec2};
+use workcell::geometry::Vec2;
 use workcell::motion::{Motion, Sample, Trajectory};
 
 const DELTA: f64 = 0.01;
@@ -21,100 +26,9 @@ const DENSE: usize = 8000;
 /// Rounding allowance on distances (coordinates are of order 1).
 const EPS: f64 = 1e-9;
 
-// ---------------------------------------------------------------------------------------
-// Independent oracle
-// ---------------------------------------------------------------------------------------
-
-// Plain arrays rather than nalgebra: the test profile is unoptimised, and the oracle runs
-// on thousands of instants per scene.
-type Pt = [f64; 2];
-
-fn sub(a: Pt, b: Pt) -> Pt {
-    [a[0] - b[0], a[1] - b[1]]
-}
-
-fn dot(a: Pt, b: Pt) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-fn orient(a: Pt, b: Pt, c: Pt) -> f64 {
-    let (u, v) = (sub(b, a), sub(c, a));
-    u[0] * v[1] - u[1] * v[0]
-}
-
-fn point_segment(p: Pt, a: Pt, b: Pt) -> f64 {
-    let ab = sub(b, a);
-    let len2 = dot(ab, ab);
-    let t = if len2 == 0.0 {
-        0.0
-    } else {
-        (dot(sub(p, a), ab) / len2).clamp(0.0, 1.0)
-    };
-    (a[0] + ab[0] * t - p[0]).hypot(a[1] + ab[1] * t - p[1])
-}
-
-/// Weakly inside (boundary included), whatever the orientation of `poly`.
-fn inside(p: Pt, poly: &[Pt]) -> bool {
-    let n = poly.len();
-    let (mut pos, mut neg) = (false, false);
-    for i in 0..n {
-        let s = orient(poly[i], poly[(i + 1) % n], p);
-        pos |= s > 0.0;
-        neg |= s < 0.0;
-    }
-    !(pos && neg)
-}
-
-fn within_box(p: Pt, a: Pt, b: Pt) -> bool {
-    p[0] >= a[0].min(b[0])
-        && p[0] <= a[0].max(b[0])
-        && p[1] >= a[1].min(b[1])
-        && p[1] <= a[1].max(b[1])
-}
-
-/// Closed segments p0p1 and q0q1 share a point.
-fn segments_meet(p0: Pt, p1: Pt, q0: Pt, q1: Pt) -> bool {
-    let d1 = orient(q0, q1, p0);
-    let d2 = orient(q0, q1, p1);
-    let d3 = orient(p0, p1, q0);
-    let d4 = orient(p0, p1, q1);
-    let opposite = |u: f64, v: f64| (u > 0.0 && v < 0.0) || (u < 0.0 && v > 0.0);
-    if opposite(d1, d2) && opposite(d3, d4) {
-        return true;
-    }
-    (d1 == 0.0 && within_box(p0, q0, q1))
-        || (d2 == 0.0 && within_box(p1, q0, q1))
-        || (d3 == 0.0 && within_box(q0, p0, p1))
-        || (d4 == 0.0 && within_box(q1, p0, p1))
-}
-
-/// Exact distance of two convex polygons: 0 on overlap (a vertex of one inside the other,
-/// or two edges meeting), else the smallest vertex-edge distance in either direction.
-fn exact_distance(a: &[Pt], b: &[Pt]) -> f64 {
-    let overlap = a.iter().any(|&p| inside(p, b))
-        || b.iter().any(|&p| inside(p, a))
-        || (0..a.len()).any(|i| {
-            (0..b.len())
-                .any(|j| segments_meet(a[i], a[(i + 1) % a.len()], b[j], b[(j + 1) % b.len()]))
-        });
-    if overlap {
-        return 0.0;
-    }
-    let mut gap = f64::INFINITY;
-    for (pts, poly) in [(a, b), (b, a)] {
-        let n = poly.len();
-        for &p in pts {
-            for j in 0..n {
-                gap = gap.min(point_segment(p, poly[j], poly[(j + 1) % n]));
-            }
-        }
-    }
-    gap
-}
-
 #[test]
 fn oracle_sanity() {
-    let sq = |x: f64, y: f64| vec![[x, y], [x + 1.0, y], [x + 1.0, y + 1.0], [x, y + 1.0]];
+    let sq = unit_square;
     assert!((exact_distance(&sq(0.0, 0.0), &sq(2.0, 0.0)) - 1.0).abs() < 1e-15);
     assert!((exact_distance(&sq(0.0, 0.0), &sq(2.0, 2.0)) - 2f64.sqrt()).abs() < 1e-15);
     assert_eq!(exact_distance(&sq(0.0, 0.0), &sq(1.0, 1.0)), 0.0);
@@ -132,8 +46,6 @@ fn oracle_sanity() {
 // Scenes
 // ---------------------------------------------------------------------------------------
 
-type Shape = Vec<[f64; 2]>;
-
 #[derive(Clone, Debug)]
 struct RobotSpec {
     /// Counter-clockwise, in the body frame.
@@ -150,39 +62,6 @@ struct SceneSpec {
 }
 
 const NAMES: [&str; 3] = ["r0", "r1", "obs"];
-
-/// Pose by linear interpolation in (x, y, θ), resting at the ends: written here, not taken
-/// from the library.
-fn pose_at(samples: &[[f64; 4]], t: f64) -> [f64; 3] {
-    let first = samples[0];
-    let last = samples[samples.len() - 1];
-    if t <= first[0] {
-        return [first[1], first[2], first[3]];
-    }
-    if t >= last[0] {
-        return [last[1], last[2], last[3]];
-    }
-    let k = samples.iter().rposition(|s| s[0] <= t).unwrap();
-    let (p, q) = (samples[k], samples[k + 1]);
-    let u = (t - p[0]) / (q[0] - p[0]);
-    [
-        p[1] + (q[1] - p[1]) * u,
-        p[2] + (q[2] - p[2]) * u,
-        p[3] + (q[3] - p[3]) * u,
-    ]
-}
-
-fn place(shape: &Shape, [x, y, theta]: [f64; 3]) -> Vec<Pt> {
-    let (s, c) = theta.sin_cos();
-    shape
-        .iter()
-        .map(|p| [c * p[0] - s * p[1] + x, s * p[0] + c * p[1] + y])
-        .collect()
-}
-
-fn radius(shape: &Shape) -> f64 {
-    shape.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max)
-}
 
 impl SceneSpec {
     fn scene(&self) -> Scene {
@@ -218,14 +97,18 @@ impl SceneSpec {
         }
     }
 
-    fn horizon(&self) -> (f64, f64) {
-        let times = self
-            .robots
+    /// Every sample time of the robots.
+    fn sample_times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.robots
             .iter()
-            .flat_map(|r| r.samples.iter().map(|s| s[0]));
-        times.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
-            (lo.min(t), hi.max(t))
-        })
+            .flat_map(|r| r.samples.iter().map(|s| s[0]))
+    }
+
+    fn horizon(&self) -> (f64, f64) {
+        self.sample_times()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+                (lo.min(t), hi.max(t))
+            })
     }
 
     /// The pairs checked, by body index: robot-robot, then robot-obstacle.
@@ -237,38 +120,39 @@ impl SceneSpec {
         pairs
     }
 
-    /// Exact distance of bodies `i` and `j` at time `t`.
-    fn distance(&self, (i, j): (usize, usize), t: f64) -> f64 {
+    /// The poses of the robots at time `t`.
+    fn poses(&self, t: f64) -> [[f64; 3]; 2] {
+        [0, 1].map(|k| pose_at(&self.robots[k].samples, t))
+    }
+
+    /// Exact distance of bodies `i` and `j`, the robots at `poses`.
+    fn pair_distance(&self, (i, j): (usize, usize), poses: &[[f64; 3]; 2]) -> f64 {
         let world = |k: usize| match k {
-            0 | 1 => {
-                let r = &self.robots[k];
-                place(&r.shape, pose_at(&r.samples, t))
-            }
-            _ => place(self.obstacle.as_ref().unwrap(), [0.0, 0.0, 0.0]),
+            0 | 1 => place(&self.robots[k].shape, poses[k]),
+            _ => self.obstacle.clone().unwrap(),
         };
         exact_distance(&world(i), &world(j))
+    }
+
+    /// Exact distance of bodies `i` and `j` at time `t`.
+    fn distance(&self, pair: (usize, usize), t: f64) -> f64 {
+        self.pair_distance(pair, &self.poses(t))
     }
 
     /// Smallest distance over all pairs at `t` when it is below δ, else `None`; skips
     /// pairs whose bounding discs are δ apart.
     fn close_at(&self, t: f64) -> Option<f64> {
-        let poses = [0, 1].map(|k| pose_at(&self.robots[k].samples, t));
+        let poses = self.poses(t);
         let disc = |k: usize| match k {
-            0 | 1 => ([poses[k][0], poses[k][1]], radius(&self.robots[k].shape)),
+            0 | 1 => (
+                [poses[k][0], poses[k][1]],
+                radius_about(&self.robots[k].shape, [0.0; 2]),
+            ),
             _ => {
                 let o = self.obstacle.as_ref().unwrap();
-                let c = o.iter().fold([0.0, 0.0], |c, p| [c[0] + p[0], c[1] + p[1]]);
-                let c = [c[0] / o.len() as f64, c[1] / o.len() as f64];
-                let r = o
-                    .iter()
-                    .map(|&p| dot(sub(p, c), sub(p, c)).sqrt())
-                    .fold(0.0, f64::max);
-                (c, r)
+                let c = centroid(o);
+                (c, radius_about(o, c))
             }
-        };
-        let world = |k: usize| match k {
-            0 | 1 => place(&self.robots[k].shape, poses[k]),
-            _ => self.obstacle.clone().unwrap(),
         };
         self.pairs()
             .into_iter()
@@ -277,7 +161,7 @@ impl SceneSpec {
                 let c = sub(ci, cj);
                 dot(c, c).sqrt() - ri - rj < 2.0 * DELTA
             })
-            .map(|(i, j)| exact_distance(&world(i), &world(j)))
+            .map(|pair| self.pair_distance(pair, &poses))
             .filter(|&d| d < DELTA)
             .reduce(f64::min)
     }
@@ -287,22 +171,12 @@ impl SceneSpec {
         let (h0, h1) = self.horizon();
         let mut ts: Vec<f64> = (0..=DENSE)
             .map(|k| h0 + (h1 - h0) * k as f64 / DENSE as f64)
-            .chain(
-                self.robots
-                    .iter()
-                    .flat_map(|r| r.samples.iter().map(|s| s[0])),
-            )
+            .chain(self.sample_times())
             .collect();
         ts.sort_by(f64::total_cmp);
         ts.dedup();
         ts
     }
-}
-
-fn polygon(s: &Shape) -> ConvexPolygon {
-    ConvexPolygon::new(s)
-        .unwrap_or_else(|e| panic!("generated polygon refused: {e}: {s:?}"))
-        .0
 }
 
 // ---------------------------------------------------------------------------------------
@@ -312,28 +186,7 @@ fn polygon(s: &Shape) -> ConvexPolygon {
 /// A convex shape of size about 0.2 to 1: random angles on an ellipse, the body origin
 /// (the rotation centre) not necessarily at its centre, nor even inside it.
 fn shape() -> impl Strategy<Value = Shape> {
-    (3usize..=12)
-        .prop_flat_map(|n| {
-            (
-                prop::collection::vec(0.2f64..1.0, n),
-                0.1f64..0.5,
-                0.1f64..0.5,
-                0.0..TAU,
-                -0.25f64..0.25,
-                -0.25f64..0.25,
-            )
-        })
-        .prop_map(|(w, rx, ry, phase, cx, cy)| {
-            let total: f64 = w.iter().sum();
-            let mut acc = phase;
-            w.iter()
-                .map(|wi| {
-                    let a = acc;
-                    acc += wi / total * TAU;
-                    [cx + rx * a.cos(), cy + ry * a.sin()]
-                })
-                .collect()
-        })
+    ellipse_shape(3..=12, 0.1..0.5, -0.25..0.25)
 }
 
 /// Turn between consecutive samples: none, moderate, or a fast spin.
@@ -665,7 +518,7 @@ fn scenes_are_mixed() {
     let mut runner = TestRunner::deterministic();
     let (mut free, mut at_start, mut later) = (0, 0, 0);
     for _ in 0..200 {
-        let spec = scene_spec().new_tree(&mut runner).unwrap().current();
+        let spec = draw(&scene_spec(), &mut runner);
         let report = check(&spec.scene(), &CheckOptions::default());
         match report.first_contact {
             None => free += 1,
@@ -687,7 +540,7 @@ fn scenes_are_mixed() {
 fn near_miss_construction_is_right() {
     let mut runner = TestRunner::deterministic();
     for _ in 0..100 {
-        let m = near_miss().new_tree(&mut runner).unwrap().current();
+        let m = draw(&near_miss(), &mut runner);
         let a = &m.spec.robots[0];
         let (first, last) = (a.samples[0], a.samples[a.samples.len() - 1]);
         let b = match &m.spec.obstacle {
@@ -697,10 +550,7 @@ fn near_miss_construction_is_right() {
                 place(&r.shape, pose_at(&r.samples, r.samples[0][0]))
             }
         };
-        let d = |u: f64| {
-            let p = [0, 1, 2].map(|i| first[i + 1] + (last[i + 1] - first[i + 1]) * u);
-            exact_distance(&place(&a.shape, p), &b)
-        };
+        let d = |u: f64| exact_distance(&place(&a.shape, lerp_pose(first, last, u)), &b);
         let (mut lo, mut hi) = (0.0, 1.0);
         let g = (5f64.sqrt() - 1.0) / 2.0;
         for _ in 0..200 {

@@ -1,13 +1,14 @@
-//! Property tests of the closest-feature walk (`closest_features`) against an independent
-//! brute-force distance written here, and against the library's `brute_force_distance`.
-//!
-//! The oracle below shares no code with the library: it places the vertices itself, takes
-//! the smallest vertex-to-edge distance in both directions, and decides overlap by a
-//! point-in-polygon test (either way round) and a segment-intersection test over all edge
-//! pairs.
+//! Property tests of the closest-feature walk (`closest_features`) against the independent
+//! brute-force distance of `common` (which shares no code with the library), and against
+//! the library's `brute_force_distance`.
 
+mod common;
+
+use common::{
+    boundary_distance, centroid, draw, ellipse_shape, exact, hull_shape, place, polygon,
+    radius_about, rectangle_shape, regular_shape, unit_square, Exact, Shape,
+};
 use proptest::prelude::*;
-use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
 use std::f64::consts::{PI, TAU};
 use workcell::geometry::{
@@ -15,117 +16,9 @@ use workcell::geometry::{
     Vec2, WalkTolerances,
 };
 
-// ---------------------------------------------------------------------------------------
-// Independent oracle
-// ---------------------------------------------------------------------------------------
-
-fn cross(a: Vec2, b: Vec2) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
-/// World vertices: R(theta)·p + (x, y), computed here rather than by `Posed`.
-fn place(local: &[Vec2], [x, y, theta]: [f64; 3]) -> Vec<Vec2> {
-    let (s, c) = theta.sin_cos();
-    local
-        .iter()
-        .map(|p| Vec2::new(c * p.x - s * p.y + x, s * p.x + c * p.y + y))
-        .collect()
-}
-
-fn point_segment(p: Vec2, a: Vec2, b: Vec2) -> f64 {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 == 0.0 {
-        0.0
-    } else {
-        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    };
-    (a + ab * t - p).norm()
-}
-
-fn orient(a: Vec2, b: Vec2, c: Vec2) -> f64 {
-    cross(b - a, c - a)
-}
-
-/// Weakly inside (boundary included), whatever the orientation of `poly`.
-fn inside(p: Vec2, poly: &[Vec2]) -> bool {
-    let n = poly.len();
-    let signs: Vec<f64> = (0..n)
-        .map(|i| orient(poly[i], poly[(i + 1) % n], p))
-        .collect();
-    signs.iter().all(|&s| s >= 0.0) || signs.iter().all(|&s| s <= 0.0)
-}
-
-fn within_box(p: Vec2, a: Vec2, b: Vec2) -> bool {
-    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
-}
-
-/// Closed segments p0p1 and q0q1 share a point.
-fn segments_meet(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> bool {
-    let d1 = orient(q0, q1, p0);
-    let d2 = orient(q0, q1, p1);
-    let d3 = orient(p0, p1, q0);
-    let d4 = orient(p0, p1, q1);
-    let opposite = |u: f64, v: f64| (u > 0.0 && v < 0.0) || (u < 0.0 && v > 0.0);
-    if opposite(d1, d2) && opposite(d3, d4) {
-        return true;
-    }
-    (d1 == 0.0 && within_box(p0, q0, q1))
-        || (d2 == 0.0 && within_box(p1, q0, q1))
-        || (d3 == 0.0 && within_box(q0, p0, p1))
-        || (d4 == 0.0 && within_box(q1, p0, p1))
-}
-
-#[derive(Clone, Copy, Debug)]
-struct Exact {
-    /// 0 on overlap, else the smallest vertex-edge distance.
-    distance: f64,
-    /// The smallest vertex-edge distance, whether or not the polygons overlap.
-    boundary_gap: f64,
-    overlap: bool,
-}
-
-fn exact(a: &[Vec2], b: &[Vec2]) -> Exact {
-    let mut gap = f64::INFINITY;
-    for (pts, poly) in [(a, b), (b, a)] {
-        let n = poly.len();
-        for &p in pts {
-            for j in 0..n {
-                gap = gap.min(point_segment(p, poly[j], poly[(j + 1) % n]));
-            }
-        }
-    }
-    let overlap = a.iter().any(|&p| inside(p, b))
-        || b.iter().any(|&p| inside(p, a))
-        || (0..a.len()).any(|i| {
-            (0..b.len())
-                .any(|j| segments_meet(a[i], a[(i + 1) % a.len()], b[j], b[(j + 1) % b.len()]))
-        });
-    Exact {
-        distance: if overlap { 0.0 } else { gap },
-        boundary_gap: gap,
-        overlap,
-    }
-}
-
-/// Distance from `p` to the boundary of `poly`.
-fn boundary_distance(p: Vec2, poly: &[Vec2]) -> f64 {
-    let n = poly.len();
-    (0..n)
-        .map(|j| point_segment(p, poly[j], poly[(j + 1) % n]))
-        .fold(f64::INFINITY, f64::min)
-}
-
 #[test]
 fn oracle_sanity() {
-    let sq = |x: f64, y: f64| {
-        vec![
-            Vec2::new(x, y),
-            Vec2::new(x + 1.0, y),
-            Vec2::new(x + 1.0, y + 1.0),
-            Vec2::new(x, y + 1.0),
-        ]
-    };
+    let sq = unit_square;
     let e = exact(&sq(0.0, 0.0), &sq(2.0, 0.0));
     assert!(!e.overlap && (e.distance - 1.0).abs() < 1e-15);
     let e = exact(&sq(0.0, 0.0), &sq(2.0, 2.0));
@@ -133,12 +26,16 @@ fn oracle_sanity() {
     assert!(exact(&sq(0.0, 0.0), &sq(1.0, 0.5)).overlap); // touching edges
     assert!(exact(&sq(0.0, 0.0), &sq(1.0, 1.0)).overlap); // touching corners
     assert!(exact(&sq(0.0, 0.0), &sq(0.5, 0.5)).overlap); // overlap
-                                                          // A cross: no vertex of either is inside the other, but the edges cross.
-    let wide = [[-2.0, -0.5], [2.0, -0.5], [2.0, 0.5], [-2.0, 0.5]].map(|[x, y]| Vec2::new(x, y));
-    let tall = wide.map(|v| Vec2::new(v.y, v.x));
+
+    // A cross: no vertex of either is inside the other, but the edges cross.
+    let wide = [[-2.0, -0.5], [2.0, -0.5], [2.0, 0.5], [-2.0, 0.5]];
+    let tall = wide.map(|[x, y]| [y, x]);
     assert!(exact(&wide, &tall).overlap);
     // Containment: no edges meet.
-    let big = sq(0.0, 0.0).iter().map(|v| v * 10.0).collect::<Vec<_>>();
+    let big: Shape = sq(0.0, 0.0)
+        .iter()
+        .map(|[x, y]| [x * 10.0, y * 10.0])
+        .collect();
     assert!(exact(&big, &sq(4.0, 4.0)).overlap);
     assert!(exact(&sq(4.0, 4.0), &big).overlap);
 }
@@ -147,124 +44,14 @@ fn oracle_sanity() {
 // Generators
 // ---------------------------------------------------------------------------------------
 
-type Shape = Vec<[f64; 2]>;
-
-/// Random angles on an ellipse (counter-clockwise), frame origin anywhere near it.
-fn ellipse_shape() -> impl Strategy<Value = Shape> {
-    (3usize..=16)
-        .prop_flat_map(|n| {
-            (
-                prop::collection::vec(0.2f64..1.0, n),
-                0.05f64..2.0,
-                0.05f64..2.0,
-                0.0..TAU,
-                -0.5f64..0.5,
-                -0.5f64..0.5,
-            )
-        })
-        .prop_map(|(w, rx, ry, phase, cx, cy)| {
-            let total: f64 = w.iter().sum();
-            let mut acc = phase;
-            w.iter()
-                .map(|wi| {
-                    let a = acc;
-                    acc += wi / total * TAU;
-                    [cx + rx * a.cos(), cy + ry * a.sin()]
-                })
-                .collect()
-        })
-}
-
-/// Andrew's monotone chain, strictly convex, counter-clockwise.
-fn hull(mut pts: Vec<[f64; 2]>) -> Shape {
-    pts.sort_by(|p, q| p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1])));
-    pts.dedup();
-    if pts.len() < 3 {
-        return pts;
-    }
-    let turn = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
-        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-    };
-    let mut h: Shape = Vec::new();
-    for pass in 0..2 {
-        let start = h.len();
-        let iter: Box<dyn Iterator<Item = &[f64; 2]>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for &p in iter {
-            while h.len() >= start + 2 && turn(h[h.len() - 2], h[h.len() - 1], p) <= 0.0 {
-                h.pop();
-            }
-            h.push(p);
-        }
-        h.pop();
-    }
-    h
-}
-
-/// Convex hull of random points.
-fn hull_shape() -> impl Strategy<Value = Shape> {
-    (
-        prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0), 3..24),
-        0.05f64..2.0,
-        -0.5f64..0.5,
-        -0.5f64..0.5,
-    )
-        .prop_filter_map("degenerate hull", |(pts, s, cx, cy)| {
-            let h = hull(pts.iter().map(|&(x, y)| [cx + s * x, cy + s * y]).collect());
-            let n = h.len();
-            if n < 3 {
-                return None;
-            }
-            let area2: f64 = (0..n)
-                .map(|i| {
-                    let (p, q) = (h[i], h[(i + 1) % n]);
-                    p[0] * q[1] - p[1] * q[0]
-                })
-                .sum();
-            (area2 > 1e-3 * s * s).then_some(h)
-        })
-}
-
-fn rectangle_shape() -> impl Strategy<Value = Shape> {
-    (0.05f64..2.0, 0.05f64..2.0, -0.5f64..0.5, -0.5f64..0.5).prop_map(|(w, h, cx, cy)| {
-        vec![
-            [cx - w, cy - h],
-            [cx + w, cy - h],
-            [cx + w, cy + h],
-            [cx - w, cy + h],
-        ]
-    })
-}
-
-/// Regular polygon with an even number of vertices: opposite edges are parallel, and the
-/// edge normals are at multiples of 2π/n, so two of them at the same angle share parallel
-/// edges.
-fn regular_shape() -> impl Strategy<Value = Shape> {
-    (
-        prop::sample::select(vec![4usize, 6, 8, 10, 12, 14, 16]),
-        0.05f64..2.0,
-        -0.5f64..0.5,
-        -0.5f64..0.5,
-    )
-        .prop_map(|(n, r, cx, cy)| {
-            (0..n)
-                .map(|k| {
-                    let a = (2 * k + 1) as f64 * PI / n as f64;
-                    [cx + r * a.cos(), cy + r * a.sin()]
-                })
-                .collect()
-        })
-}
-
+/// A convex shape of size about 0.05 to 2, the frame origin anywhere near it.
 fn any_shape() -> impl Strategy<Value = Shape> {
+    let (size, offset) = (0.05..2.0, -0.5..0.5);
     prop_oneof![
-        3 => ellipse_shape(),
-        3 => hull_shape(),
-        1 => rectangle_shape(),
-        2 => regular_shape(),
+        3 => ellipse_shape(3..=16, size.clone(), offset.clone()),
+        3 => hull_shape(size.clone(), offset.clone()),
+        1 => rectangle_shape(size.clone(), offset.clone()),
+        2 => regular_shape(size, offset),
     ]
 }
 
@@ -312,12 +99,6 @@ struct PairCase {
     pose_b: [f64; 3],
 }
 
-fn polygon(s: &Shape) -> ConvexPolygon {
-    ConvexPolygon::new(s)
-        .unwrap_or_else(|e| panic!("generated polygon refused: {e}: {s:?}"))
-        .0
-}
-
 fn local_vertices(s: &Shape) -> Vec<Vec2> {
     polygon(s).vertices().to_vec()
 }
@@ -326,6 +107,15 @@ fn local_vertices(s: &Shape) -> Vec<Vec2> {
 fn normal(v: &[Vec2], i: usize) -> Vec2 {
     let e = v[(i + 1) % v.len()] - v[i];
     Vec2::new(e.y, -e.x).normalize()
+}
+
+/// Edge `i` (taken modulo) of `shape` at `pose`: its outward unit normal, and the point at
+/// parameter `s` along it pushed out by `g` along that normal.
+fn edge_point(shape: &Shape, pose: [f64; 3], i: usize, s: f64, g: f64) -> (Vec2, Vec2) {
+    let w = place(&local_vertices(shape), pose);
+    let i = i % w.len();
+    let n = normal(&w, i);
+    (n, w[i] + (w[(i + 1) % w.len()] - w[i]) * s + n * g)
 }
 
 fn random_case() -> impl Strategy<Value = PairCase> {
@@ -351,16 +141,13 @@ fn parallel_case() -> impl Strategy<Value = PairCase> {
         gap(),
     )
         .prop_map(|(a, pose_a, b, i, j, s, g)| {
-            let wa = place(&local_vertices(&a), pose_a);
-            let i = i % wa.len();
-            let na = normal(&wa, i);
+            let (na, target) = edge_point(&a, pose_a, i, s, g);
             let lb = local_vertices(&b);
             let j = j % lb.len();
             let nb = normal(&lb, j);
             let theta_b = (-na.y).atan2(-na.x) - nb.y.atan2(nb.x);
             let wb = place(&lb, [0.0, 0.0, theta_b]);
             let mid_b = (wb[j] + wb[(j + 1) % wb.len()]) * 0.5;
-            let target = wa[i] + (wa[(i + 1) % wa.len()] - wa[i]) * s + na * g;
             let t = target - mid_b;
             PairCase {
                 kind: "parallel",
@@ -385,16 +172,13 @@ fn touching_case() -> impl Strategy<Value = PairCase> {
         gap(),
     )
         .prop_map(|(a, pose_a, b, theta_b, i, s, g)| {
-            let wa = place(&local_vertices(&a), pose_a);
-            let i = i % wa.len();
-            let na = normal(&wa, i);
+            let (na, target) = edge_point(&a, pose_a, i, s, g);
             let wb = place(&local_vertices(&b), [0.0, 0.0, theta_b]);
             let support = wb
                 .iter()
                 .copied()
                 .min_by(|p, q| p.dot(&na).total_cmp(&q.dot(&na)))
                 .unwrap();
-            let target = wa[i] + (wa[(i + 1) % wa.len()] - wa[i]) * s + na * g;
             let t = target - support;
             PairCase {
                 kind: "touching",
@@ -420,13 +204,13 @@ fn containment_case() -> impl Strategy<Value = PairCase> {
     )
         .prop_map(|(big, pose_big, small, theta_s, f, reach, dir, swap)| {
             let wbig = place(&local_vertices(&big), pose_big);
-            let c = wbig.iter().sum::<Vec2>() / wbig.len() as f64;
+            let c = centroid(&wbig);
             let inradius = (0..wbig.len())
                 .map(|i| normal(&wbig, i).dot(&(wbig[i] - c)))
                 .fold(f64::INFINITY, f64::min);
             let ls = local_vertices(&small);
-            let cs = ls.iter().sum::<Vec2>() / ls.len() as f64;
-            let rs = ls.iter().map(|v| (v - cs).norm()).fold(0.0, f64::max);
+            let cs = centroid(&ls);
+            let rs = radius_about(&ls, cs);
             let k = f * inradius / rs;
             let small: Shape = ls.iter().map(|v| [v.x * k, v.y * k]).collect();
             let room = (inradius - f * inradius) * reach;
@@ -606,6 +390,17 @@ fn warm() -> impl Strategy<Value = Warm> {
         .prop_map(|(nudge, any_pair)| Warm { nudge, any_pair })
 }
 
+/// The walk at the case's poses, warm-started from the features of a query at the poses
+/// nudged by `w`.
+fn warm_walk(s: &Setting, c: &PairCase, w: &Warm, tolw: &WalkTolerances) -> Distance {
+    let n = w.nudge;
+    let near_a = [c.pose_a[0] + n[0], c.pose_a[1] + n[1], c.pose_a[2] + n[2]];
+    let near_b = [c.pose_b[0] + n[3], c.pose_b[1] + n[4], c.pose_b[2] + n[5]];
+    let before = closest_features(&posed(&s.pa, near_a), &posed(&s.pb, near_b), None, tolw);
+    let (a, b) = (posed(&s.pa, c.pose_a), posed(&s.pb, c.pose_b));
+    closest_features(&a, &b, Some(before.features), tolw)
+}
+
 fn check_case(c: &PairCase, w: &Warm) -> Result<(), TestCaseError> {
     let s = setting(c);
     let tolw = WalkTolerances::default();
@@ -642,11 +437,7 @@ fn check_case(c: &PairCase, w: &Warm) -> Result<(), TestCaseError> {
     );
 
     // Warm start from the features of a query at a nearby pose.
-    let n = w.nudge;
-    let near_a = [c.pose_a[0] + n[0], c.pose_a[1] + n[1], c.pose_a[2] + n[2]];
-    let near_b = [c.pose_b[0] + n[3], c.pose_b[1] + n[4], c.pose_b[2] + n[5]];
-    let before = closest_features(&posed(&s.pa, near_a), &posed(&s.pb, near_b), None, &tolw);
-    let warmed = closest_features(&a, &b, Some(before.features), &tolw);
+    let warmed = warm_walk(&s, c, w, &tolw);
     agrees(&s, &warmed, "warm (nearby pose)")?;
     prop_assert!(
         (warmed.distance - cold.distance).abs() <= s.tol,
@@ -713,20 +504,20 @@ proptest! {
 #[test]
 fn generators_cover_the_special_cases() {
     let mut runner = TestRunner::deterministic();
-    let mut draw = |s: &dyn Fn(&mut TestRunner) -> PairCase, n: usize| -> Vec<Setting> {
+    let mut settings = |s: &dyn Fn(&mut TestRunner) -> PairCase, n: usize| -> Vec<Setting> {
         (0..n).map(|_| setting(&s(&mut runner))).collect()
     };
-    let touching = draw(&|r| touching_case().new_tree(r).unwrap().current(), 400);
+    let touching = settings(&|r| draw(&touching_case(), r), 400);
     let exactly = touching
         .iter()
         .filter(|s| s.oracle.boundary_gap <= s.tol)
         .count();
     assert!(exactly > 100, "only {exactly}/400 touching cases touch");
-    let contained = draw(&|r| containment_case().new_tree(r).unwrap().current(), 100);
+    let contained = settings(&|r| draw(&containment_case(), r), 100);
     assert!(contained
         .iter()
         .all(|s| s.oracle.overlap && s.oracle.boundary_gap > 0.0));
-    let random = draw(&|r| random_case().new_tree(r).unwrap().current(), 400);
+    let random = settings(&|r| draw(&random_case(), r), 400);
     let overlapping = random.iter().filter(|s| s.oracle.overlap).count();
     assert!(
         (40..=360).contains(&overlapping),
@@ -742,16 +533,12 @@ fn fallback_is_rare() {
     let tolw = WalkTolerances::default();
     let (mut walks, mut fallbacks) = (0usize, 0usize);
     for _ in 0..2000 {
-        let c = pair_case().new_tree(&mut runner).unwrap().current();
-        let w = warm().new_tree(&mut runner).unwrap().current();
+        let c = draw(&pair_case(), &mut runner);
+        let w = draw(&warm(), &mut runner);
         let s = setting(&c);
         let (a, b) = (posed(&s.pa, c.pose_a), posed(&s.pb, c.pose_b));
         let cold = closest_features(&a, &b, None, &tolw);
-        let n = w.nudge;
-        let near_a = [c.pose_a[0] + n[0], c.pose_a[1] + n[1], c.pose_a[2] + n[2]];
-        let near_b = [c.pose_b[0] + n[3], c.pose_b[1] + n[4], c.pose_b[2] + n[5]];
-        let before = closest_features(&posed(&s.pa, near_a), &posed(&s.pb, near_b), None, &tolw);
-        let warmed = closest_features(&a, &b, Some(before.features), &tolw);
+        let warmed = warm_walk(&s, &c, &w, &tolw);
         walks += 2;
         fallbacks += usize::from(cold.fell_back) + usize::from(warmed.fell_back);
     }
@@ -770,8 +557,8 @@ fn fallback_is_rare() {
 /// sqrt(feature_tol · Rmax · edge length). Ignored until the walk is fixed.
 #[test]
 fn touching_wedge_is_at_distance_zero() {
-    let a = polygon(&vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
-    let b = polygon(&vec![[1.0, 1.0], [1.0 + 1.5e-5, -0.5], [3.0, 0.25]]);
+    let a = polygon(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    let b = polygon(&[[1.0, 1.0], [1.0 + 1.5e-5, -0.5], [3.0, 0.25]]);
     let (pa, pb) = (posed(&a, [0.0; 3]), posed(&b, [0.0; 3]));
     assert_eq!(brute_force_distance(&pa, &pb).distance, 0.0);
     let d = closest_features(&pa, &pb, None, &WalkTolerances::default());
