@@ -6,7 +6,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
-use workcell::cell::{load_scene, InputError};
+use workcell::cell::{check_precision, load_scene, InputError};
 use workcell::collision::{check, CheckOptions, CheckReport};
 use workcell::motion::BoundKind;
 
@@ -99,6 +99,9 @@ fn run_check(
     opts: &CheckOptions,
 ) -> Result<ExitCode, InputError> {
     let loaded = load_scene(path)?;
+    if let Some(delta) = opts.delta {
+        check_precision(&loaded.scene, delta, path)?;
+    }
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
@@ -134,18 +137,19 @@ fn print_summary(
         ),
         Some(c) => {
             println!(
-                "{}: COLLISION between {} and {} at t = {:.9} (merged interval {}, distance {:.3e} < delta {})",
+                "{}: COLLISION between {} and {} at t = {} (merged interval {}, distance {:.3e} < delta {})",
                 path.display(),
                 c.bodies[0],
                 c.bodies[1],
-                c.time,
+                time(c.time),
                 c.interval,
                 c.distance,
                 r.delta
             );
             println!(
-                "certified collision-free until t = {:.9} (time tolerance {:.3e})",
-                r.safe_until, r.time_tol
+                "certified collision-free until t = {} (time tolerance {:.3e})",
+                time(r.safe_until),
+                r.time_tol
             );
         }
     }
@@ -161,10 +165,10 @@ fn print_summary(
             p.bodies[0], p.bodies[1], s.intervals, p.merged_intervals, s.bisections, s.narrow_phase_calls, s.feature_steps
         );
     }
-    if s.grazing > 0 {
+    if s.unresolved > 0 {
         println!(
-            "grazing: {} intervals stay within the distance tolerance of delta",
-            s.grazing
+            "UNRESOLVED: {} intervals too fine for f64 at these coordinates: not a proof",
+            s.unresolved
         );
     }
     println!(
@@ -173,4 +177,13 @@ fn print_summary(
         elapsed.as_secs_f64() * 1e3,
         threads
     );
+}
+
+/// A time for people: nine decimals, or nine significant digits when it is huge.
+fn time(t: f64) -> String {
+    if t.abs() < 1e9 {
+        format!("{t:.9}")
+    } else {
+        format!("{t:.9e}")
+    }
 }

@@ -2,7 +2,9 @@
 //! file, the body and the field.
 
 mod error;
+mod precision;
 mod scene_file;
 
 pub use error::InputError;
+pub use precision::{check_precision, MAX_COORDINATE_OVER_DELTA};
 pub use scene_file::{load_scene, parse_scene, LoadedScene};

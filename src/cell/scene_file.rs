@@ -124,10 +124,9 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
         )?;
         bodies.push(Body::obstacle(o.name.clone(), &shape));
     }
-    Ok(LoadedScene {
-        scene: Scene { delta, bodies },
-        warnings,
-    })
+    let scene = Scene { delta, bodies };
+    super::check_precision(&scene, delta, file)?;
+    Ok(LoadedScene { scene, warnings })
 }
 
 /// The name of the robot or obstacle that a field path such as `robots[2].shape` points

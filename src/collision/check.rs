@@ -35,7 +35,7 @@ impl Default for CheckOptions {
             delta: None,
             bound: BoundKind::Rigorous,
             time_tol: None,
-            dist_tol: 1e-6,
+            dist_tol: 1e-4,
             walk: WalkTolerances::default(),
             per_pair: false,
         }

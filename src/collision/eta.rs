@@ -1,17 +1,23 @@
 //! η(t): a lower bound of the distance between two bodies at time t.
 
 use super::{Body, Stats};
-use crate::geometry::{closest_features, FeaturePair, Posed, WalkTolerances};
-use crate::motion::{Piece, Pose};
+use crate::geometry::{closest_features, FeaturePair, Posed, Vec2, WalkTolerances};
+use crate::motion::Pose;
 
 /// A pair's state at one instant: both poses and η.
 #[derive(Clone, Copy, Debug)]
 pub struct Instant {
     pub t: f64,
+    /// Position in the merged interval being checked: 0 at its start, 1 at its end.
+    pub u: f64,
     pub pose_a: Pose,
     pub pose_b: Pose,
     /// Lower bound of the distance; exact whenever it is below δ.
     pub eta: f64,
+    /// Whether `eta` is the exact distance (else the disc gap).
+    pub exact: bool,
+    /// Unit direction from A to B along which `eta` is measured (zero on overlap).
+    pub normal: Vec2,
 }
 
 /// Evaluates η for one pair, keeping the last closest features for the next warm start.
@@ -34,18 +40,21 @@ impl<'s> Eta<'s> {
         }
     }
 
+    /// Sum of the two bounding-disc radii (eq. 13).
+    pub fn radii(&self) -> f64 {
+        self.a.shape.radius() + self.b.shape.radius()
+    }
+
     /// η(t): the gap between the bounding discs (eq. 13) while it is at least δ, else the
     /// exact distance from the closest-feature walk, warm-started from the previous call.
-    /// `pieces` are the pieces of A's and B's motions that hold `t`.
-    pub fn at(&mut self, t: f64, pieces: &(Piece, Piece), stats: &mut Stats) -> Instant {
-        let pose_a = pieces.0.pose_at(t);
-        let pose_b = pieces.1.pose_at(t);
+    /// `poses` are A's and B's poses at time `t`.
+    pub fn at(&mut self, t: f64, (pose_a, pose_b): (Pose, Pose), stats: &mut Stats) -> Instant {
         // Work in a frame centred on A: far from the origin, positions lose digits but
         // their difference does not.
         let rel = pose_b.pos - pose_a.pos;
-        let disc_gap = rel.norm() - self.a.shape.radius() - self.b.shape.radius();
-        let eta = if disc_gap >= self.delta {
-            disc_gap
+        let disc_gap = rel.norm() - self.radii();
+        let (eta, exact, normal) = if disc_gap >= self.delta {
+            (disc_gap, false, rel / rel.norm())
         } else {
             stats.narrow_phase_calls += 1;
             let pa = Posed::new(&self.a.shape, 0.0, 0.0, pose_a.theta);
@@ -54,13 +63,21 @@ impl<'s> Eta<'s> {
             stats.feature_steps += u64::from(d.steps);
             stats.walk_fallbacks += u64::from(d.fell_back);
             self.warm = Some(d.features);
-            d.distance
+            let normal = if d.distance > 0.0 {
+                (d.point_b - d.point_a) / d.distance
+            } else {
+                Vec2::zeros()
+            };
+            (d.distance, true, normal)
         };
         Instant {
             t,
+            u: 0.0,
             pose_a,
             pose_b,
             eta,
+            exact,
+            normal,
         }
     }
 }

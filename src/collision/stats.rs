@@ -16,9 +16,13 @@ pub struct Stats {
     pub feature_steps: u64,
     /// Walks stopped by the cycling guard and answered by the exact fallback.
     pub walk_fallbacks: u64,
-    /// Intervals accepted at the limit of floating-point resolution, where the distance
-    /// stays within the distance tolerance of δ without a certificate or a witness.
-    pub grazing: u64,
+    /// Intervals certified by the convexity of the distance under translation (neither
+    /// body turns), where the first-order condition alone would have split them.
+    pub convexity_certificates: u64,
+    /// Intervals that floating point cannot split further and that are neither certified
+    /// nor hold a witness. Only coordinates far too large for δ cause it (the scene loader
+    /// refuses them); a report with any is not a proof.
+    pub unresolved: u64,
 }
 
 impl AddAssign for Stats {
@@ -28,6 +32,7 @@ impl AddAssign for Stats {
         self.narrow_phase_calls += o.narrow_phase_calls;
         self.feature_steps += o.feature_steps;
         self.walk_fallbacks += o.walk_fallbacks;
-        self.grazing += o.grazing;
+        self.unresolved += o.unresolved;
+        self.convexity_certificates += o.convexity_certificates;
     }
 }

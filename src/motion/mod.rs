@@ -10,4 +10,4 @@ mod bounds;
 mod trajectory;
 
 pub use bounds::{lambda, BoundKind};
-pub use trajectory::{Motion, Piece, Pose, Sample, Trajectory, TrajectoryError};
+pub use trajectory::{Motion, Pose, Sample, Trajectory, TrajectoryError};

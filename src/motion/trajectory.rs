@@ -26,10 +26,10 @@ pub struct Pose {
     pub theta: f64,
 }
 
-/// The pose as a linear function of time on one piece of a motion: between two samples,
-/// or at rest before the first, after the last, or for ever (a fixed body).
+/// The pose as a linear function of time on one piece of a trajectory: between two
+/// samples, or at rest before the first or after the last.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Piece {
+struct Piece {
     t0: f64,
     pose0: Pose,
     /// d(pos)/dt on the piece: the velocity the interpolation implies.
@@ -50,7 +50,7 @@ impl Piece {
 
     /// The pose at `t`, which must lie on the piece.
     #[inline]
-    pub fn pose_at(&self, t: f64) -> Pose {
+    fn pose_at(&self, t: f64) -> Pose {
         let dt = t - self.t0;
         Pose {
             pos: self.pose0.pos + self.rate * dt,
@@ -140,7 +140,7 @@ impl Trajectory {
     }
 
     /// The piece of the motion that holds `t` (for a sample time, the one that starts there).
-    pub fn piece_at(&self, t: f64) -> Piece {
+    fn piece_at(&self, t: f64) -> Piece {
         let s = &self.samples;
         match self.segment(t) {
             Some(k) => {
@@ -219,16 +219,9 @@ impl Motion {
     /// Pose at time `t`.
     #[inline]
     pub fn pose_at(&self, t: f64) -> Pose {
-        self.piece_at(t).pose_at(t)
-    }
-
-    /// The piece that holds `t`: a time interval that contains no sample time in its
-    /// interior lies on the piece of its midpoint.
-    #[inline]
-    pub fn piece_at(&self, t: f64) -> Piece {
         match self {
-            Motion::Sampled(tr) => tr.piece_at(t),
-            Motion::Fixed(p) => Piece::rest(*p),
+            Motion::Sampled(tr) => tr.pose_at(t),
+            Motion::Fixed(p) => *p,
         }
     }
 

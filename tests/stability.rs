@@ -1,0 +1,90 @@
+//! Where checkers usually break, each verdict known by construction: bodies gliding at
+//! exactly δ, a teleport within one unit in the last place, time stamps near f64's limit,
+//! and coordinates too large for δ.
+
+use std::path::Path;
+use workcell::cell::parse_scene;
+use workcell::collision::{check, CheckOptions, CheckReport};
+
+const SQUARE: &str = "[[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]]";
+const WALL: &str = r#""obstacles": [{"name": "wall", "shape": [[-1,-5],[1,-5],[1,5],[-1,5]]}]"#;
+
+fn run(text: &str) -> CheckReport {
+    let loaded = parse_scene(text, Path::new("stability.json")).unwrap_or_else(|e| panic!("{e}"));
+    check(&loaded.scene, &CheckOptions::default())
+}
+
+/// Square A slides along x under square B, whose bottom face is `gap` above A's top face.
+fn glide(gap: f64, turn: f64) -> String {
+    format!(
+        r#"{{"delta": 0.001, "robots": [
+        {{"name": "A", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0, "y": 0}}, {{"t": 1, "x": 1, "y": 0, "theta": {turn}}}]}},
+        {{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0.5, "y": {}}}]}}]}}"#,
+        1.0 + gap
+    )
+}
+
+#[test]
+fn gliding_at_delta_is_certified_without_splitting() {
+    // Faces parallel, 1e-15 beyond δ for the whole second: the first-order condition alone
+    // would need ~10⁷ splits; the convexity of the distance under translation needs none.
+    let r = run(&glide(0.001 + 1e-15, 0.0));
+    assert!(!r.collision);
+    assert_eq!(r.stats.bisections, 0);
+    assert!(r.stats.convexity_certificates >= 1);
+}
+
+#[test]
+fn gliding_inside_delta_collides() {
+    let r = run(&glide(0.001 * (1.0 - 1e-3), 0.0));
+    assert!(r.collision);
+    assert!(r.first_contact.unwrap().distance < 0.001);
+}
+
+#[test]
+fn gliding_while_turning_away_is_free() {
+    // A turns while it slides: no convexity argument; the bisection must still finish.
+    let r = run(&glide(0.002, -0.001));
+    assert!(!r.collision, "{r:?}");
+}
+
+fn teleport(t0: &str, t1: &str) -> String {
+    format!(
+        r#"{{"delta": 0.001, "robots": [{{"name": "A", "shape": {SQUARE},
+        "trajectory": [{{"t": {t0}, "x": -10, "y": 0}}, {{"t": {t1}, "x": 10, "y": 0}}]}}], {WALL}}}"#
+    )
+}
+
+#[test]
+fn a_pass_through_the_wall_within_one_ulp_of_time_collides() {
+    // No time between the two samples is representable, but the motion is continuous.
+    let r = run(&teleport("1", "1.0000000000000002"));
+    assert!(r.collision);
+    assert_eq!(r.first_contact.as_ref().unwrap().bodies, ["A", "wall"]);
+    assert_eq!(r.stats.unresolved, 0);
+}
+
+#[test]
+fn time_stamps_near_the_f64_limit_still_collide() {
+    let r = run(&teleport("1e308", "1.7e308"));
+    assert!(r.collision);
+    let c = r.first_contact.unwrap();
+    assert!(c.time > 1e308 && c.time < 1.7e308);
+}
+
+#[test]
+fn coordinates_too_large_for_delta_are_refused_naming_the_field() {
+    let text = teleport("0", "1").replace("\"x\": -10", "\"x\": -1.5e308");
+    let e = parse_scene(&text, Path::new("huge.json")).unwrap_err();
+    assert_eq!(e.body.as_deref(), Some("A"));
+    assert_eq!(e.field, "robots[0].trajectory[0].x");
+    // 1e5 with δ = 1e-3, as in the corpus, is fine.
+    let text = teleport("0", "1").replace("\"x\": -10", "\"x\": -1e5");
+    assert!(parse_scene(&text, Path::new("large.json")).is_ok());
+}
+
+#[test]
+fn a_horizon_longer_than_f64_holds_is_refused() {
+    let e = parse_scene(&teleport("-1.7e308", "1.7e308"), Path::new("long.json")).unwrap_err();
+    assert!(e.reason.contains("horizon"), "{e}");
+}
