@@ -3,8 +3,10 @@
 //! Exit status: 0 collision-free, 1 collision found, 2 unusable input (message on stderr).
 
 use clap::{Parser, Subcommand, ValueEnum};
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Duration;
 use std::time::Instant;
 use workcell::cell::{check_precision, load_scene, InputError};
 use workcell::collision::{check, CheckOptions, CheckReport};
@@ -93,15 +95,13 @@ fn main() -> ExitCode {
     }
 }
 
-fn run_check(
-    path: &std::path::Path,
-    json: bool,
-    opts: &CheckOptions,
-) -> Result<ExitCode, InputError> {
+fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
     let loaded = load_scene(path)?;
-    if let Some(delta) = opts.delta {
-        check_precision(&loaded.scene, delta, path)?;
-    }
+    check_precision(
+        &loaded.scene,
+        opts.delta.unwrap_or(loaded.scene.delta),
+        path,
+    )?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
@@ -110,34 +110,44 @@ fn run_check(
     let start = Instant::now();
     let report = check(&loaded.scene, opts);
     let elapsed = start.elapsed();
-    if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).expect("a report always serialises")
-        );
+    let text = if json {
+        serde_json::to_string_pretty(&report).expect("a report always serialises") + "\n"
     } else {
-        print_summary(path, &report, elapsed, threads);
+        summary(path, &report, elapsed, threads)
+    };
+    // A closed pipe (`| head`) is the reader's choice, not an error of ours.
+    let _ = std::io::stdout().write_all(text.as_bytes());
+    if report.stats.unresolved > 0 && !report.collision {
+        return Err(InputError {
+            file: path.to_path_buf(),
+            body: None,
+            field: String::new(),
+            reason: format!(
+                "{} intervals could not be resolved in f64 at these coordinates: no proof",
+                report.stats.unresolved
+            ),
+        });
     }
     Ok(ExitCode::from(u8::from(report.collision)))
 }
 
-fn print_summary(
-    path: &std::path::Path,
-    r: &CheckReport,
-    elapsed: std::time::Duration,
-    threads: usize,
-) {
+fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> String {
+    let mut out = String::new();
+    let mut line = |l: String| {
+        out.push_str(&l);
+        out.push('\n');
+    };
     match &r.first_contact {
-        None => println!(
+        None => line(format!(
             "{}: collision-free over [{}, {}] (delta {})",
             path.display(),
             r.horizon[0],
             r.horizon[1],
             r.delta
-        ),
+        )),
         Some(c) => {
-            println!(
-                "{}: COLLISION between {} and {} at t = {} (merged interval {}, distance {:.3e} < delta {})",
+            line(format!(
+                "{}: COLLISION between {} and {} at t = {} (merged interval {}, distance {:.6e} < delta {})",
                 path.display(),
                 c.bodies[0],
                 c.bodies[1],
@@ -145,38 +155,39 @@ fn print_summary(
                 c.interval,
                 c.distance,
                 r.delta
-            );
-            println!(
+            ));
+            line(format!(
                 "certified collision-free until t = {} (time tolerance {:.3e})",
                 time(r.safe_until),
                 r.time_tol
-            );
+            ));
         }
     }
     let s = &r.stats;
-    println!(
-        "intervals {}, bisections {}, narrow-phase calls {}, feature steps {}, walk fallbacks {}",
-        s.intervals, s.bisections, s.narrow_phase_calls, s.feature_steps, s.walk_fallbacks
-    );
+    line(format!(
+        "intervals {}, bisections {}, narrow-phase calls {}, feature steps {}, walk fallbacks {}, convexity certificates {}",
+        s.intervals, s.bisections, s.narrow_phase_calls, s.feature_steps, s.walk_fallbacks, s.convexity_certificates
+    ));
     for p in r.pair_stats.iter().flatten() {
         let s = &p.stats;
-        println!(
+        line(format!(
             "  {} - {}: {} of {} merged intervals, bisections {}, narrow-phase calls {}, feature steps {}",
             p.bodies[0], p.bodies[1], s.intervals, p.merged_intervals, s.bisections, s.narrow_phase_calls, s.feature_steps
-        );
+        ));
     }
-    if s.unresolved > 0 {
-        println!(
-            "UNRESOLVED: {} intervals too fine for f64 at these coordinates: not a proof",
-            s.unresolved
-        );
+    if s.grazing > 0 {
+        line(format!(
+            "NOT CERTIFIED: {} intervals (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - 1e-4)",
+            s.grazing
+        ));
     }
-    println!(
+    line(format!(
         "{} pairs checked in {:.3} ms on {} threads",
         r.pairs,
         elapsed.as_secs_f64() * 1e3,
         threads
-    );
+    ));
+    out
 }
 
 /// A time for people: nine decimals, or nine significant digits when it is huge.

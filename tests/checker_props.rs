@@ -373,9 +373,9 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
     let opts = CheckOptions::default();
     let report = check(&scene, &opts);
     let (h0, h1) = spec.horizon();
-    // Certificates prove a distance of at least δ(1 − dist_tol): closer than that (with
+    // Certificates prove a distance of at least δ(1 − grazing_tol): closer than that (with
     // rounding to spare) at a sampled instant is a contact the checker must report.
-    let must_report = DELTA * (1.0 - opts.dist_tol) - EPS;
+    let must_report = DELTA * (1.0 - opts.grazing_tol) - EPS;
     // Slack for the time comparisons: a few rounding errors of the horizon's end.
     let slack = 1e-12 * (1.0 + h1.abs());
 
@@ -384,7 +384,7 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
     prop_assert_eq!(report.pairs, spec.pairs().len());
 
     // The oracle: the sampled instants closer than δ, in time order, up to the first one
-    // closer than δ(1 − dist_tol); no property needs the instants after it.
+    // closer than δ(1 − grazing_tol); no property needs the instants after it.
     let mut close: Vec<(f64, f64)> = Vec::new();
     for t in spec.instants() {
         if let Some(d) = spec.close_at(t) {
@@ -455,7 +455,7 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
             );
         }
     }
-    // (e) Nothing sampled before safe_until is closer than δ(1 − dist_tol).
+    // (e) Nothing sampled before safe_until is closer than δ(1 − grazing_tol).
     if let Some(&(t, d)) = close
         .iter()
         .find(|&&(t, d)| t < report.safe_until && d < must_report)
@@ -490,13 +490,13 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
-    /// Near misses, decided both ways: closer than δ(1 − dist_tol) is a collision, δ or
+    /// Near misses, decided both ways: closer than δ(1 − grazing_tol) is a collision, δ or
     /// farther is not (in between, either answer is allowed).
     #[test]
     fn near_misses_are_decided_exactly(m in near_miss()) {
         let opts = CheckOptions::default();
         let report = check(&m.spec.scene(), &opts);
-        if m.gap < DELTA * (1.0 - opts.dist_tol) - EPS {
+        if m.gap < DELTA * (1.0 - opts.grazing_tol) - EPS {
             prop_assert!(report.collision, "missed a pass at {:e} (δ = {DELTA})", m.gap);
         }
         if m.gap > DELTA + EPS {

@@ -3,7 +3,7 @@
 //! and coordinates too large for δ.
 
 use std::path::Path;
-use workcell::cell::parse_scene;
+use workcell::cell::{check_precision, parse_scene};
 use workcell::collision::{check, CheckOptions, CheckReport};
 
 const SQUARE: &str = "[[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]]";
@@ -14,29 +14,38 @@ fn run(text: &str) -> CheckReport {
     check(&loaded.scene, &CheckOptions::default())
 }
 
-/// Square A slides along x under square B, whose bottom face is `gap` above A's top face.
-fn glide(gap: f64, turn: f64) -> String {
+/// Square A slides along x under square B, whose centre is at height `y` (its bottom face
+/// y − 1 above A's top face).
+fn glide(y: f64, turn: f64) -> String {
     format!(
         r#"{{"delta": 0.001, "robots": [
         {{"name": "A", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0, "y": 0}}, {{"t": 1, "x": 1, "y": 0, "theta": {turn}}}]}},
-        {{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0.5, "y": {}}}]}}]}}"#,
-        1.0 + gap
+        {{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0.5, "y": {y}}}]}}]}}"#
     )
 }
 
 #[test]
-fn gliding_at_delta_is_certified_without_splitting() {
-    // Faces parallel, 1e-15 beyond δ for the whole second: the first-order condition alone
-    // would need ~10⁷ splits; the convexity of the distance under translation needs none.
-    let r = run(&glide(0.001 + 1e-15, 0.0));
-    assert!(!r.collision);
+fn gliding_just_beyond_delta_is_certified_without_splitting() {
+    // Faces parallel, 10⁻⁸ beyond δ for the whole second: the first-order condition alone
+    // would need ~10⁸ splits; the convexity of the distance under translation needs none.
+    let r = run(&glide(1.001 + 1e-8, 0.0));
+    assert!(!r.collision && r.certified, "{r:?}");
     assert_eq!(r.stats.bisections, 0);
-    assert!(r.stats.convexity_certificates >= 1);
+    assert_eq!(r.stats.convexity_certificates, 1);
+}
+
+#[test]
+fn gliding_at_delta_is_free_but_flagged_as_a_graze() {
+    // The next double above 1.001: the gap is δ + 3·10⁻¹⁶, within rounding of δ. No
+    // certificate can prove ≥ δ and no witness exists.
+    let r = run(&glide(1.0010000000000003, 0.0));
+    assert!(!r.collision && !r.certified, "{r:?}");
+    assert!(r.stats.grazing > 0);
 }
 
 #[test]
 fn gliding_inside_delta_collides() {
-    let r = run(&glide(0.001 * (1.0 - 1e-3), 0.0));
+    let r = run(&glide(1.0 + 0.001 * (1.0 - 1e-3), 0.0));
     assert!(r.collision);
     assert!(r.first_contact.unwrap().distance < 0.001);
 }
@@ -44,8 +53,8 @@ fn gliding_inside_delta_collides() {
 #[test]
 fn gliding_while_turning_away_is_free() {
     // A turns while it slides: no convexity argument; the bisection must still finish.
-    let r = run(&glide(0.002, -0.001));
-    assert!(!r.collision, "{r:?}");
+    let r = run(&glide(1.002, -0.001));
+    assert!(!r.collision && r.certified, "{r:?}");
 }
 
 fn teleport(t0: &str, t1: &str) -> String {
@@ -72,19 +81,36 @@ fn time_stamps_near_the_f64_limit_still_collide() {
     assert!(c.time > 1e308 && c.time < 1.7e308);
 }
 
+fn precision(text: &str, delta: f64) -> Result<(), workcell::cell::InputError> {
+    let path = Path::new("precision.json");
+    check_precision(&parse_scene(text, path).unwrap().scene, delta, path)
+}
+
 #[test]
 fn coordinates_too_large_for_delta_are_refused_naming_the_field() {
     let text = teleport("0", "1").replace("\"x\": -10", "\"x\": -1.5e308");
-    let e = parse_scene(&text, Path::new("huge.json")).unwrap_err();
+    let e = precision(&text, 1e-3).unwrap_err();
     assert_eq!(e.body.as_deref(), Some("A"));
     assert_eq!(e.field, "robots[0].trajectory[0].x");
-    // 1e5 with δ = 1e-3, as in the corpus, is fine.
+    // 1e5 with δ = 1e-3, as in the corpus, is fine; with δ = 1e-9 it is not.
     let text = teleport("0", "1").replace("\"x\": -10", "\"x\": -1e5");
-    assert!(parse_scene(&text, Path::new("large.json")).is_ok());
+    assert!(precision(&text, 1e-3).is_ok());
+    assert!(precision(&text, 1e-9).is_err());
 }
 
 #[test]
 fn a_horizon_longer_than_f64_holds_is_refused() {
-    let e = parse_scene(&teleport("-1.7e308", "1.7e308"), Path::new("long.json")).unwrap_err();
+    let e = precision(&teleport("-1.7e308", "1.7e308"), 1e-3).unwrap_err();
     assert!(e.reason.contains("horizon"), "{e}");
+}
+
+#[test]
+fn a_graze_far_from_the_origin_is_not_lost_by_vertex_merging() {
+    // The obstacle's sliver vertex is 2.4e-4 from its neighbour; 2.5e8 from the origin an
+    // absolute-scaled merge tolerance dropped it, and the contact with it.
+    let text = r#"{"delta": 0.001, "robots": [{"name": "R", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+        "trajectory": [{"t": 0, "x": 250000001.50114, "y": 0.0001}]}],
+        "obstacles": [{"name": "O", "shape": [[250000000,0],[250000001,0],[250000001.00024,0.0001],[250000001,1],[250000000,1]]}]}"#;
+    assert!(precision(text, 1e-3).is_ok());
+    assert!(run(text).collision);
 }

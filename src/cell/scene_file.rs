@@ -57,7 +57,8 @@ pub struct LoadedScene {
     pub warnings: Vec<String>,
 }
 
-/// Reads and validates the scene file at `path`.
+/// Reads and validates the scene file at `path`. Whether f64 can check it depends on the
+/// δ finally used: see [`super::check_precision`].
 pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
@@ -67,10 +68,18 @@ pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
 /// Parses and validates a scene document; `file` is only used to name it in messages.
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     let de = &mut serde_json::Deserializer::from_str(text);
-    let raw: RawScene = serde_path_to_error::deserialize(de).map_err(|e| {
+    let raw: RawScene = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
         let field = e.path().to_string();
         let body = body_named_by(text, &field);
         InputError::new(file, body.as_deref(), field, e.inner())
+    })?;
+    de.end().map_err(|e| {
+        InputError::new(
+            file,
+            None,
+            "",
+            format!("unexpected data after the scene document: {e}"),
+        )
     })?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
     if !(delta.is_finite() && delta > 0.0) {
@@ -124,9 +133,10 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
         )?;
         bodies.push(Body::obstacle(o.name.clone(), &shape));
     }
-    let scene = Scene { delta, bodies };
-    super::check_precision(&scene, delta, file)?;
-    Ok(LoadedScene { scene, warnings })
+    Ok(LoadedScene {
+        scene: Scene { delta, bodies },
+        warnings,
+    })
 }
 
 /// The name of the robot or obstacle that a field path such as `robots[2].shape` points

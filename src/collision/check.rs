@@ -20,9 +20,10 @@ pub struct CheckOptions {
     /// Absolute time tolerance of the first contact, in the scene's time unit; default
     /// 10⁻⁶ of the horizon's length.
     pub time_tol: Option<f64>,
-    /// Grazing allowance, relative to δ: a scene is certified free when no pair comes closer
-    /// than δ·(1 − `dist_tol`); a contact is reported only where the distance is below δ.
-    pub dist_tol: f64,
+    /// Grazing allowance, relative to δ. Certificates prove distance ≥ δ; only where that
+    /// fails on an interval shorter than the time tolerance, with no witness, is
+    /// δ·(1 − `grazing_tol`) accepted, and counted in [`Stats::grazing`].
+    pub grazing_tol: f64,
     /// Narrow-phase tolerances and limits.
     pub walk: WalkTolerances,
     /// Also report each pair's counters ([`CheckReport::pair_stats`]).
@@ -35,7 +36,7 @@ impl Default for CheckOptions {
             delta: None,
             bound: BoundKind::Rigorous,
             time_tol: None,
-            dist_tol: 1e-4,
+            grazing_tol: 1e-4,
             walk: WalkTolerances::default(),
             per_pair: false,
         }
@@ -65,6 +66,9 @@ pub struct CheckReport {
     pub first_contact: Option<Contact>,
     /// End of the prefix of the horizon certified free.
     pub safe_until: f64,
+    /// Whether the verdict is proven: a contact always is (it has a witness); "free" is
+    /// unless some interval only grazes δ or could not be resolved (see [`Stats`]).
+    pub certified: bool,
     /// Counters, summed over pairs; independent of the number of threads.
     pub stats: Stats,
     /// First and last sample time of any robot.
@@ -93,18 +97,20 @@ pub struct PairStats {
 
 /// Checks every robot-robot and robot-obstacle pair of `scene` over its horizon.
 ///
-/// Guarantee (rigorous bound): when `collision` is false, no pair comes closer than
-/// δ·(1 − dist_tol) at any time of the horizon; when true, the pair named is closer than δ
-/// at `first_contact.time`, and no pair is closer than δ·(1 − dist_tol) before
-/// `safe_until`, which is within the time tolerance of it. The result, counters included,
-/// does not depend on the number of threads.
+/// Guarantee (rigorous bound, a scene that passes [`crate::cell::check_precision`] at the δ
+/// used): when `collision` is false, no pair comes closer than δ at any time of the horizon,
+/// except within [`Stats::grazing`] intervals, each shorter than the time tolerance, where
+/// the distance stays above δ·(1 − grazing_tol) (`certified` is then false). When true, the
+/// pair named is closer than δ at `first_contact.time` (an exact distance), and the same
+/// holds before `safe_until`, which is within the time tolerance before it. The result,
+/// counters included, does not depend on the number of threads.
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let horizon = scene.horizon();
     let delta = opts.delta.unwrap_or(scene.delta);
     let time_tol = opts.time_tol.unwrap_or(1e-6 * (horizon.1 - horizon.0));
     let settings = PairSettings {
         delta,
-        dist_tol: opts.dist_tol * delta,
+        grazing_tol: opts.grazing_tol * delta,
         time_tol,
         bound: opts.bound,
         walk: opts.walk,
@@ -156,6 +162,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .fold(horizon.1, f64::min);
     CheckReport {
         collision: first.is_some(),
+        certified: first.is_some() || (stats.grazing == 0 && stats.unresolved == 0),
         first_contact: first.map(|(c, &p)| Contact {
             time: c.time,
             bodies: names(p),

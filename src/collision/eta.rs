@@ -4,9 +4,9 @@ use super::{Body, Stats};
 use crate::geometry::{closest_features, FeaturePair, Posed, Vec2, WalkTolerances};
 use crate::motion::Pose;
 
-/// A pair's state at one instant: both poses and η.
+/// A pair probed at one time: both poses and η.
 #[derive(Clone, Copy, Debug)]
-pub struct Instant {
+pub struct Probe {
     pub t: f64,
     /// Position in the merged interval being checked: 0 at its start, 1 at its end.
     pub u: f64,
@@ -48,7 +48,7 @@ impl<'s> Eta<'s> {
     /// η(t): the gap between the bounding discs (eq. 13) while it is at least δ, else the
     /// exact distance from the closest-feature walk, warm-started from the previous call.
     /// `poses` are A's and B's poses at time `t`.
-    pub fn at(&mut self, t: f64, (pose_a, pose_b): (Pose, Pose), stats: &mut Stats) -> Instant {
+    pub fn at(&mut self, t: f64, (pose_a, pose_b): (Pose, Pose), stats: &mut Stats) -> Probe {
         // Work in a frame centred on A: far from the origin, positions lose digits but
         // their difference does not.
         let rel = pose_b.pos - pose_a.pos;
@@ -70,7 +70,7 @@ impl<'s> Eta<'s> {
             };
             (d.distance, true, normal)
         };
-        Instant {
+        Probe {
             t,
             u: 0.0,
             pose_a,

@@ -1,6 +1,6 @@
 //! The adaptive check of one pair of bodies (Feyeux & Landry, Table 1).
 
-use super::eta::{Eta, Instant};
+use super::eta::{Eta, Probe};
 use super::{Body, Stats};
 use crate::geometry::WalkTolerances;
 use crate::motion::{lambda, BoundKind, Pose};
@@ -11,8 +11,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 pub struct PairSettings {
     /// δ: closer than this is a collision.
     pub delta: f64,
-    /// Grazing allowance: certificates prove distance ≥ δ − `dist_tol`.
-    pub dist_tol: f64,
+    /// Grazing allowance (length): an interval shorter than `time_tol` that can only be
+    /// shown to stay above δ − `grazing_tol` counts as a graze, not a contact.
+    pub grazing_tol: f64,
     /// The first contact is reported no later than this after the true one.
     pub time_tol: f64,
     /// Which λ.
@@ -174,7 +175,7 @@ pub fn check_pair(
             a: (left.pose_a, right.pose_a),
             b: (left.pose_b, right.pose_b),
         };
-        let ends = (Instant { u: 0.0, ..left }, Instant { u: 1.0, ..right });
+        let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
         if let Err((witness, safe_until)) = adaptive(&mut eta, &span, ends, s, &mut stats) {
             limit.lower_to(witness.t);
             let contact = PairContact {
@@ -189,36 +190,38 @@ pub fn check_pair(
     outcome(None, left.t, log, stats)
 }
 
-/// A lower bound of the distance over [l, r] when neither body turns, else `None`.
+/// A lower bound of the distance over [l, r] from its convexity (second certificate).
 ///
-/// The relative motion is then a translation, under which both the exact distance and the
-/// disc gap are convex in time, so each lies above its tangents at the two ends; the slope
-/// of a tangent is the separation direction times the relative velocity. This certifies in
-/// one step what the first-order condition needs ever finer splits for: bodies gliding past
-/// each other at a distance close to δ.
-fn translation_bound(l: &Instant, r: &Instant, radii: f64) -> Option<f64> {
-    if l.pose_a.theta != r.pose_a.theta || l.pose_b.theta != r.pose_b.theta {
-        return None;
-    }
+/// Under the relative translation w of the interval, the disc gap |G_b − G_a| − Ra − Rb is
+/// convex in time whatever the bodies' rotations, and so is the exact distance of the two
+/// bodies frozen in their orientation at either end. A convex function lies above its
+/// tangents; the tangent's slope is the separation direction times w. Rotation moves no
+/// point farther than ρ = Ra·|Δθa| + Rb·|Δθb| over the interval, which tilts the exact
+/// tangents by ρ. This certifies in one step bodies that glide past each other close to δ,
+/// or spin far from everything, where the first-order condition needs ever finer splits.
+fn convexity_bound(l: &Probe, r: &Probe, radii: (f64, f64), feature_tol: f64) -> f64 {
     let w = (r.pose_b.pos - l.pose_b.pos) - (r.pose_a.pos - l.pose_a.pos);
-    let ((f0, n0), (f1, n1)) = if l.exact && r.exact {
-        ((l.eta, l.normal), (r.eta, r.normal))
+    let (f0, n0, f1, n1, rho) = if l.exact && r.exact {
+        let rho = radii.0 * (r.pose_a.theta - l.pose_a.theta).abs()
+            + radii.1 * (r.pose_b.theta - l.pose_b.theta).abs();
+        (l.eta, l.normal, r.eta, r.normal, rho)
     } else {
-        let disc = |i: &Instant| {
-            let c = i.pose_b.pos - i.pose_a.pos;
-            (c.norm() - radii, c / c.norm())
+        let disc = |p: &Probe| {
+            let c = p.pose_b.pos - p.pose_a.pos;
+            (c.norm() - radii.0 - radii.1, c / c.norm())
         };
-        (disc(l), disc(r))
+        let ((f0, n0), (f1, n1)) = (disc(l), disc(r));
+        (f0, n0, f1, n1, 0.0)
     };
-    let (s0, s1) = (n0.dot(&w), n1.dot(&w));
+    let (s0, s1) = (n0.dot(&w) - rho, n1.dot(&w) + rho);
     let above_tangents = |u: f64| (f0 + s0 * u).max(f1 - s1 * (1.0 - u));
     let mut low = above_tangents(0.0).min(above_tangents(1.0));
     let crossing = (f1 - s1 - f0) / (s0 - s1);
     if (0.0..=1.0).contains(&crossing) {
         low = low.min(above_tangents(crossing));
     }
-    // The walk's separation direction is exact to about 1e-10 rad (its Voronoi slack).
-    Some(low - 1e-9 * w.norm())
+    // The walk's separation direction is exact to its Voronoi slack (an angle).
+    low - 10.0 * feature_tol * w.norm()
 }
 
 /// Table 1 on one merged interval, both ends evaluated and the left one known free.
@@ -229,12 +232,13 @@ fn translation_bound(l: &Instant, r: &Instant, radii: f64) -> Option<f64> {
 fn adaptive(
     eta: &mut Eta,
     span: &Span,
-    ends: (Instant, Instant),
+    ends: (Probe, Probe),
     s: &PairSettings,
     stats: &mut Stats,
-) -> Result<(), (Instant, f64)> {
+) -> Result<(), (Probe, f64)> {
     let (a, b) = (eta.a, eta.b);
     let duration = span.t1 - span.t0;
+    let radii = (a.shape.radius(), b.shape.radius());
     let mut stack = vec![ends];
     while let Some((l, r)) = stack.pop() {
         let mid = 0.5 * (l.u + r.u);
@@ -260,27 +264,38 @@ fn adaptive(
                 (l.t, &l.pose_b),
                 (r.t, &r.pose_b),
             );
-            let floor = s.delta - s.dist_tol;
-            if lam < l.eta + r.eta - 2.0 * floor {
+            let first_order = (l.eta + r.eta - lam) / 2.0;
+            if first_order >= s.delta {
                 continue;
             }
-            if s.bound == BoundKind::Rigorous
-                && translation_bound(&l, &r, eta.radii()).is_some_and(|m| m >= floor)
-            {
+            // The paper's method has only the first-order certificate.
+            let low = match s.bound {
+                BoundKind::Rigorous => {
+                    first_order.max(convexity_bound(&l, &r, radii, s.walk.feature_tol))
+                }
+                BoundKind::Paper => first_order,
+            };
+            if low >= s.delta {
                 stats.convexity_certificates += 1;
                 continue;
             }
+            if (r.u - l.u) * duration <= s.time_tol && low >= s.delta - s.grazing_tol {
+                // Within the time tolerance and within the allowance of δ, with no witness:
+                // a graze. Splitting on would cost ever more where a body turns at exactly δ.
+                stats.grazing += 1;
+                continue;
+            }
             if resolved {
-                // Only when one step of f64 moves a body farther than the grazing allowance:
-                // coordinates far too large for δ, which the scene loader refuses.
+                // One step of f64 moves a body farther than the allowance: coordinates far too
+                // large for δ, which `cell::check_precision` refuses.
                 stats.unresolved += 1;
                 continue;
             }
         }
         stats.bisections += 1;
         let m = eta.at(span.time(mid), span.poses(mid), stats);
-        stack.push((Instant { u: mid, ..m }, r));
-        stack.push((l, Instant { u: mid, ..m }));
+        stack.push((Probe { u: mid, ..m }, r));
+        stack.push((l, Probe { u: mid, ..m }));
     }
     Ok(())
 }

@@ -16,9 +16,12 @@ pub struct Stats {
     pub feature_steps: u64,
     /// Walks stopped by the cycling guard and answered by the exact fallback.
     pub walk_fallbacks: u64,
-    /// Intervals certified by the convexity of the distance under translation (neither
-    /// body turns), where the first-order condition alone would have split them.
+    /// Intervals certified by the convexity of the distance under the relative translation,
+    /// where the first-order condition alone would have split them.
     pub convexity_certificates: u64,
+    /// Intervals shorter than the time tolerance, with no witness, shown to stay above
+    /// δ·(1 − grazing allowance) but not above δ: the pair grazes δ there.
+    pub grazing: u64,
     /// Intervals that floating point cannot split further and that are neither certified
     /// nor hold a witness. Only coordinates far too large for δ cause it (the scene loader
     /// refuses them); a report with any is not a proof.
@@ -34,5 +37,6 @@ impl AddAssign for Stats {
         self.walk_fallbacks += o.walk_fallbacks;
         self.unresolved += o.unresolved;
         self.convexity_certificates += o.convexity_certificates;
+        self.grazing += o.grazing;
     }
 }

@@ -90,10 +90,13 @@ impl ConvexPolygon {
         }
         let mut warnings = Vec::new();
         // (input index, point), consecutive duplicates removed (cyclically).
-        let magnitude = points
-            .iter()
-            .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
-        let same_tol = SHAPE_TOL * magnitude;
+        // Relative to the polygon's own size, not to its distance from the origin: far from
+        // the origin, an absolute-scaled tolerance would merge distinct vertices.
+        let first = points.first().map_or([0.0, 0.0], |p| *p);
+        let size = points.iter().fold(0.0f64, |m, p| {
+            m.max((p[0] - first[0]).abs()).max((p[1] - first[1]).abs())
+        });
+        let same_tol = SHAPE_TOL * size;
         let mut pts: Vec<(usize, Vec2)> = Vec::with_capacity(points.len());
         for (i, p) in points.iter().enumerate() {
             let v = Vec2::new(p[0], p[1]);
