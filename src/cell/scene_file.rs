@@ -189,11 +189,14 @@ fn polygon(
         };
         InputError::new(file, Some(body), field, e)
     })?;
-    for r in repairs {
-        warnings.push(format!(
-            "{}: body \"{body}\", field `{field}`: {r}",
-            file.display()
-        ));
+    // A long list of repairs says no more than its first few and its length.
+    const SHOWN: usize = 8;
+    let at = format!("{}: body \"{body}\", field `{field}`", file.display());
+    for r in repairs.iter().take(SHOWN) {
+        warnings.push(format!("{at}: {r}"));
+    }
+    if repairs.len() > SHOWN {
+        warnings.push(format!("{at}: and {} more repairs", repairs.len() - SHOWN));
     }
     Ok(shape)
 }

@@ -130,32 +130,49 @@ impl ConvexPolygon {
             pts.reverse();
             warnings.push(PolygonWarning::Reversed);
         }
-        // Drop collinear vertices until none is left; a reflex or cusp vertex is an error.
-        let mut k = 0;
-        let mut stable = 0;
-        while stable < pts.len() {
-            if pts.len() < 3 {
+        // Drop collinear vertices in one pass: a stack, then the seam between last and first.
+        let turn = |p: &Vec2, c: &Vec2, q: &Vec2| {
+            let (e0, e1) = (c - p, q - c);
+            (cross(&e0, &e1) / (e0.norm() * e1.norm()), e0.dot(&e1) > 0.0)
+        };
+        let straight = |p: &Vec2, c: &Vec2, q: &Vec2| {
+            let (sine, forward) = turn(p, c, q);
+            sine.abs() <= SHAPE_TOL && forward
+        };
+        let mut kept: Vec<(usize, Vec2)> = Vec::with_capacity(pts.len());
+        for p in pts {
+            while kept.len() >= 2
+                && straight(&kept[kept.len() - 2].1, &kept[kept.len() - 1].1, &p.1)
+            {
+                let (i, _) = kept.pop().unwrap();
+                warnings.push(PolygonWarning::CollinearVertex(i));
+            }
+            kept.push(p);
+        }
+        loop {
+            let n = kept.len();
+            if n < 3 {
                 return Err(PolygonError::ZeroArea);
             }
-            let n = pts.len();
-            let (prev, (idx, cur), next) = (pts[(k + n - 1) % n].1, pts[k % n], pts[(k + 1) % n].1);
-            let e0 = cur - prev;
-            let e1 = next - cur;
-            let sine = cross(&e0, &e1) / (e0.norm() * e1.norm());
-            if sine.abs() <= SHAPE_TOL && e0.dot(&e1) > 0.0 {
-                warnings.push(PolygonWarning::CollinearVertex(idx));
-                pts.remove(k % n);
-                stable = 0;
-                continue;
-            }
+            let removed = if straight(&kept[n - 2].1, &kept[n - 1].1, &kept[0].1) {
+                kept.pop().unwrap()
+            } else if straight(&kept[n - 1].1, &kept[0].1, &kept[1].1) {
+                kept.remove(0)
+            } else {
+                break;
+            };
+            warnings.push(PolygonWarning::CollinearVertex(removed.0));
+        }
+        let pts = kept;
+        // Every remaining turn must be strictly left; a reflex or cusp vertex is an error.
+        let n = pts.len();
+        for k in 0..n {
+            let (sine, _) = turn(&pts[(k + n - 1) % n].1, &pts[k].1, &pts[(k + 1) % n].1);
             if sine <= SHAPE_TOL {
-                return Err(PolygonError::NotConvex { vertex: idx });
+                return Err(PolygonError::NotConvex { vertex: pts[k].0 });
             }
-            k = (k + 1) % n;
-            stable += 1;
         }
         // All turns are left; a star polygon also turns only left but winds several times.
-        let n = pts.len();
         let turning: f64 = (0..n)
             .map(|k| {
                 let e0 = pts[k].1 - pts[(k + n - 1) % n].1;
