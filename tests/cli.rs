@@ -193,6 +193,32 @@ fn bad_trajectories_and_documents_are_refused() {
         &good.replace(r#""x": 3"#, r#""x": 1e999"#),
         &["robots[0].trajectory[1].x"],
     );
+    // A number out of f64's range still names its body.
+    refused(
+        "out-of-range",
+        &good.replace(r#""t": 1, "x": 3"#, r#""t": 1e400, "x": 3"#),
+        &["\"A\"", "robots[0].trajectory[1].t", "out of range"],
+    );
+    refused(
+        "overflowing-velocity",
+        &good.replace(r#""t": 1, "x": 3"#, r#""t": 1e-300, "x": 1e10"#),
+        &[
+            "\"A\"",
+            "robots[0].trajectory[0]",
+            "velocity derived from the positions",
+        ],
+    );
+    refused(
+        "three-numbers",
+        &good.replacen("[-0.5,-0.5],", "[-0.5,-0.5,0],", 1),
+        &["\"A\"", "robots[0].shape[0]", "[x, y]"],
+    );
+    refused(
+        "trailing",
+        &format!("{good} {{"),
+        &["after the scene document"],
+    );
+    refused("not-an-object", "[]", &["a scene: an object with `robots`"]);
 }
 
 #[test]

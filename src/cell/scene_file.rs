@@ -12,6 +12,7 @@ use std::path::Path;
 pub const DEFAULT_DELTA: f64 = 0.001;
 
 #[derive(Deserialize)]
+#[serde(expecting = "a scene: an object with `robots` and optional `delta` and `obstacles`")]
 struct RawScene {
     #[serde(default)]
     delta: Option<f64>,
@@ -21,13 +22,17 @@ struct RawScene {
 }
 
 #[derive(Deserialize)]
+#[serde(expecting = "a robot: an object with `name`, `shape` and `trajectory`")]
 struct RawRobot {
     name: String,
-    shape: Vec<[f64; 2]>,
+    shape: Vec<Vec<f64>>,
     trajectory: Vec<RawSample>,
 }
 
 #[derive(Deserialize)]
+#[serde(
+    expecting = "a sample: an object with `t`, `x`, `y` and optional `theta`, `vx`, `vy`, `omega`"
+)]
 struct RawSample {
     t: f64,
     x: f64,
@@ -43,9 +48,10 @@ struct RawSample {
 }
 
 #[derive(Deserialize)]
+#[serde(expecting = "an obstacle: an object with `name` and `shape`")]
 struct RawObstacle {
     name: String,
-    shape: Vec<[f64; 2]>,
+    shape: Vec<Vec<f64>>,
 }
 
 /// A scene read from a file, with the repairs made on the way (one line each).
@@ -69,7 +75,10 @@ pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     let de = &mut serde_json::Deserializer::from_str(text);
     let raw: RawScene = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
-        let field = e.path().to_string();
+        let field = match e.path().to_string() {
+            root if root == "." => String::new(),
+            path => path,
+        };
         let body = body_named_by(text, &field);
         InputError::new(file, body.as_deref(), field, e.inner())
     })?;
@@ -109,6 +118,9 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
                 TrajectoryError::NotFinite { sample, field } => {
                     format!("{at}.trajectory[{sample}].{field}")
                 }
+                TrajectoryError::DerivedVelocityOverflow { sample } => {
+                    format!("{at}.trajectory[{sample}]")
+                }
                 TrajectoryError::NotIncreasing { sample, .. } => {
                     format!("{at}.trajectory[{sample}].t")
                 }
@@ -142,10 +154,28 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
 /// The name of the robot or obstacle that a field path such as `robots[2].shape` points
 /// into, when the document is valid enough JSON to find it.
 fn body_named_by(text: &str, field: &str) -> Option<String> {
+    // Only the names are read, everything else is skipped unparsed: the field that failed
+    // (say a number out of range) must not fail this too.
+    #[derive(Deserialize)]
+    struct Named {
+        name: Option<String>,
+    }
+    #[derive(Deserialize)]
+    struct Names {
+        #[serde(default)]
+        robots: Vec<Named>,
+        #[serde(default)]
+        obstacles: Vec<Named>,
+    }
     let (list, rest) = field.split_once('[')?;
     let index: usize = rest.split_once(']')?.0.parse().ok()?;
-    let doc: serde_json::Value = serde_json::from_str(text).ok()?;
-    Some(doc.get(list)?.get(index)?.get("name")?.as_str()?.to_owned())
+    let names: Names = serde_json::from_str(text).ok()?;
+    let bodies = match list {
+        "robots" => names.robots,
+        "obstacles" => names.obstacles,
+        _ => return None,
+    };
+    bodies.into_iter().nth(index)?.name
 }
 
 fn check_name(
@@ -177,10 +207,25 @@ fn polygon(
     file: &Path,
     body: &str,
     field: &str,
-    points: &[[f64; 2]],
+    points: &[Vec<f64>],
     warnings: &mut Vec<String>,
 ) -> Result<ConvexPolygon, InputError> {
-    let (shape, repairs) = ConvexPolygon::new(points).map_err(|e| {
+    let mut vertices = Vec::with_capacity(points.len());
+    for (k, p) in points.iter().enumerate() {
+        match p[..] {
+            [x, y] => vertices.push([x, y]),
+            _ => {
+                let reason = format!("a vertex is [x, y], found {} numbers", p.len());
+                return Err(InputError::new(
+                    file,
+                    Some(body),
+                    format!("{field}[{k}]"),
+                    reason,
+                ));
+            }
+        }
+    }
+    let (shape, repairs) = ConvexPolygon::new(&vertices).map_err(|e| {
         let field = match &e {
             PolygonError::NotFinite { vertex, .. } | PolygonError::NotConvex { vertex } => {
                 format!("{field}[{vertex}]")
@@ -222,6 +267,9 @@ fn trajectory(raw: &[RawSample]) -> Result<Trajectory, TrajectoryError> {
         } else {
             Trajectory::derived_velocity(&samples, k)
         };
+        if !(v.x.is_finite() && v.y.is_finite() && w.is_finite()) {
+            return Err(TrajectoryError::DerivedVelocityOverflow { sample: k });
+        }
         samples[k].vel = Vec2::new(s.vx.unwrap_or(v.x), s.vy.unwrap_or(v.y));
         samples[k].omega = s.omega.unwrap_or(w);
     }

@@ -73,6 +73,13 @@ pub enum TrajectoryError {
         /// Field name as in the scene file.
         field: &'static str,
     },
+    /// A velocity left out of the file and derived from the positions is not finite: the
+    /// positions are too far apart for the time step.
+    #[error("sample {sample}: the velocity derived from the positions overflows")]
+    DerivedVelocityOverflow {
+        /// Input index.
+        sample: usize,
+    },
     /// Time stamps do not strictly increase.
     #[error("sample {sample}: `t` = {t} does not come after the previous {previous}")]
     NotIncreasing {
