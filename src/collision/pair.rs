@@ -153,14 +153,16 @@ pub fn check_pair(
         log,
         total,
     };
+    let contact = |p: &Probe, interval| {
+        limit.lower_to(p.t);
+        Some(PairContact {
+            time: p.t,
+            distance: p.eta,
+            interval,
+        })
+    };
     if left.eta < s.delta {
-        limit.lower_to(left.t);
-        let contact = PairContact {
-            time: left.t,
-            distance: left.eta,
-            interval: 1,
-        };
-        return outcome(Some(contact), left.t, log, stats);
+        return outcome(contact(&left, 1), left.t, log, stats);
     }
     for (k, &t) in grid.iter().enumerate().skip(1) {
         if left.t > limit.get() {
@@ -177,13 +179,7 @@ pub fn check_pair(
         };
         let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
         if let Err((witness, safe_until)) = adaptive(&mut eta, &span, ends, s, &mut stats) {
-            limit.lower_to(witness.t);
-            let contact = PairContact {
-                time: witness.t,
-                distance: witness.eta,
-                interval: k,
-            };
-            return outcome(Some(contact), safe_until, log, stats);
+            return outcome(contact(&witness, k), safe_until, log, stats);
         }
         left = right;
     }
