@@ -114,3 +114,20 @@ fn a_graze_far_from_the_origin_is_not_lost_by_vertex_merging() {
     assert!(precision(text, 1e-3).is_ok());
     assert!(run(text).collision);
 }
+
+#[test]
+fn a_jump_within_a_subnormal_time_step_collides() {
+    // Δt = 1e-310: a rate Δx/Δt would overflow to infinity and the poses to NaN.
+    let text = format!(
+        r#"{{"delta": 0.001, "robots": [
+        {{"name": "A", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0, "y": 0, "vx": 0, "vy": 0, "omega": 0}},
+            {{"t": 1e-310, "x": 10, "y": 0, "vx": 0, "vy": 0, "omega": 0}}, {{"t": 1, "x": 10, "y": 0, "vx": 0, "vy": 0, "omega": 0}}]}},
+        {{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 5, "y": 0}}, {{"t": 1, "x": 5, "y": 0}}]}}]}}"#
+    );
+    let r = run(&text);
+    assert!(r.collision && r.certified, "{r:?}");
+    assert!(r.first_contact.unwrap().time < 1e-300);
+    // The same jump far from B is free.
+    let r = run(&text.replace(r#""x": 5, "y": 0"#, r#""x": 5, "y": 50"#));
+    assert!(!r.collision && r.certified, "{r:?}");
+}

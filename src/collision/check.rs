@@ -66,8 +66,10 @@ pub struct CheckReport {
     pub first_contact: Option<Contact>,
     /// End of the prefix of the horizon certified free.
     pub safe_until: f64,
-    /// Whether the verdict is proven: a contact always is (it has a witness); "free" is
-    /// unless some interval only grazes δ or could not be resolved (see [`Stats`]).
+    /// Whether the whole report is proven. False when some interval examined only grazes δ
+    /// or could not be resolved (see [`Stats`]): then a verdict of free, or the prefix before
+    /// `safe_until`, holds only down to δ·(1 − grazing_tol). A reported contact itself is
+    /// always real (it has a witness).
     pub certified: bool,
     /// Counters, summed over pairs; independent of the number of threads.
     pub stats: Stats,
@@ -162,7 +164,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .fold(horizon.1, f64::min);
     CheckReport {
         collision: first.is_some(),
-        certified: first.is_some() || (stats.grazing == 0 && stats.unresolved == 0),
+        certified: stats.grazing == 0 && stats.unresolved == 0,
         first_contact: first.map(|(c, &p)| Contact {
             time: c.time,
             bodies: names(p),

@@ -239,6 +239,11 @@ fn adaptive(
     while let Some((l, r)) = stack.pop() {
         let mid = 0.5 * (l.u + r.u);
         let resolved = !(l.u < mid && mid < r.u);
+        if l.eta.is_nan() || r.eta.is_nan() {
+            // No finite geometry to reason about; the CLI turns this into an input error.
+            stats.unresolved += 1;
+            continue;
+        }
         if r.eta < s.delta {
             // A contact lies in (l, r]: bisect until the interval is within tolerance.
             if (r.u - l.u) * duration <= s.time_tol || resolved {

@@ -26,39 +26,6 @@ pub struct Pose {
     pub theta: f64,
 }
 
-/// The pose as a linear function of time on one piece of a trajectory: between two
-/// samples, or at rest before the first or after the last.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Piece {
-    t0: f64,
-    pose0: Pose,
-    /// d(pos)/dt on the piece: the velocity the interpolation implies.
-    rate: Vec2,
-    /// d(theta)/dt on the piece.
-    spin: f64,
-}
-
-impl Piece {
-    fn rest(pose: Pose) -> Self {
-        Piece {
-            t0: 0.0,
-            pose0: pose,
-            rate: Vec2::zeros(),
-            spin: 0.0,
-        }
-    }
-
-    /// The pose at `t`, which must lie on the piece.
-    #[inline]
-    fn pose_at(&self, t: f64) -> Pose {
-        let dt = t - self.t0;
-        Pose {
-            pos: self.pose0.pos + self.rate * dt,
-            theta: self.pose0.theta + self.spin * dt,
-        }
-    }
-}
-
 /// Why a list of samples is not a trajectory. `sample` is the index in the input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum TrajectoryError {
@@ -142,34 +109,19 @@ impl Trajectory {
 
     /// The pose at time `t`: linear interpolation between samples; before the first sample
     /// the first pose and after the last the last pose (the paper's eqs. 4-5).
+    ///
+    /// Interpolates by the fraction of the time step, never by a rate Δpos/Δt: a step of
+    /// 1e-310 would overflow the rate and turn the poses into NaN.
     pub fn pose_at(&self, t: f64) -> Pose {
-        self.piece_at(t).pose_at(t)
-    }
-
-    /// The piece of the motion that holds `t` (for a sample time, the one that starts there).
-    fn piece_at(&self, t: f64) -> Piece {
         let s = &self.samples;
-        match self.segment(t) {
-            Some(k) => {
-                let (p, q) = (&s[k], &s[k + 1]);
-                let dt = q.t - p.t;
-                Piece {
-                    t0: p.t,
-                    pose0: Pose {
-                        pos: p.pos,
-                        theta: p.theta,
-                    },
-                    rate: (q.pos - p.pos) / dt,
-                    spin: (q.theta - p.theta) / dt,
-                }
-            }
-            None => {
-                let p = if t < s[0].t { &s[0] } else { &s[s.len() - 1] };
-                Piece::rest(Pose {
-                    pos: p.pos,
-                    theta: p.theta,
-                })
-            }
+        let (p, q, u) = match self.segment(t) {
+            Some(k) => (&s[k], &s[k + 1], (t - s[k].t) / (s[k + 1].t - s[k].t)),
+            None if t < s[0].t => (&s[0], &s[0], 0.0),
+            None => (&s[s.len() - 1], &s[s.len() - 1], 0.0),
+        };
+        Pose {
+            pos: p.pos + (q.pos - p.pos) * u,
+            theta: p.theta + (q.theta - p.theta) * u,
         }
     }
 
