@@ -143,6 +143,8 @@ pub fn check_pair(
     let mut eta = Eta::new(a, b, s.delta, s.walk);
     let mut stats = Stats::default();
     let mut log = Vec::with_capacity(grid.len());
+    // Bisection stack, reused by every merged interval of the pair.
+    let mut stack = Vec::new();
     let poses_at = |t: f64| (a.motion.pose_at(t), b.motion.pose_at(t));
     let mut left = eta.at(grid[0], poses_at(grid[0]), &mut stats);
     let merged_intervals = grid.len() - 1;
@@ -178,7 +180,9 @@ pub fn check_pair(
             b: (left.pose_b, right.pose_b),
         };
         let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
-        if let Err((witness, safe_until)) = adaptive(&mut eta, &span, ends, s, &mut stats) {
+        if let Err((witness, safe_until)) =
+            adaptive(&mut eta, &span, ends, s, &mut stack, &mut stats)
+        {
             return outcome(contact(&witness, k), safe_until, log, stats);
         }
         left = right;
@@ -230,12 +234,14 @@ fn adaptive(
     span: &Span,
     ends: (Probe, Probe),
     s: &PairSettings,
+    stack: &mut Vec<(Probe, Probe)>,
     stats: &mut Stats,
 ) -> Result<(), (Probe, f64)> {
     let (a, b) = (eta.a, eta.b);
     let duration = span.t1 - span.t0;
     let radii = (a.shape.radius(), b.shape.radius());
-    let mut stack = vec![ends];
+    stack.clear();
+    stack.push(ends);
     while let Some((l, r)) = stack.pop() {
         let mid = 0.5 * (l.u + r.u);
         let resolved = !(l.u < mid && mid < r.u);
