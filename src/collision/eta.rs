@@ -16,7 +16,8 @@ pub struct Probe {
     pub eta: f64,
     /// Whether `eta` is the exact distance (else the disc gap).
     pub exact: bool,
-    /// Unit direction from A to B along which `eta` is measured (zero on overlap).
+    /// When `exact`, the unit direction from A's closest point to B's (zero on overlap);
+    /// zero otherwise (the disc direction follows from the poses).
     pub normal: Vec2,
 }
 
@@ -54,7 +55,7 @@ impl<'s> Eta<'s> {
         let rel = pose_b.pos - pose_a.pos;
         let disc_gap = rel.norm() - self.radii();
         let (eta, exact, normal) = if disc_gap >= self.delta {
-            (disc_gap, false, rel / rel.norm())
+            (disc_gap, false, Vec2::zeros())
         } else {
             stats.narrow_phase_calls += 1;
             let pa = Posed::new(&self.a.shape, 0.0, 0.0, pose_a.theta);
