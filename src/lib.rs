@@ -28,3 +28,5 @@ pub mod cell;
 pub mod collision;
 pub mod geometry;
 pub mod motion;
+pub mod planning;
+pub mod wcp;

@@ -1,0 +1,1 @@
+//! The Work-Cell Problem: the graph of travel times, the sequencer and the feedback loop.
