@@ -1,15 +1,17 @@
 //! `workcell`: the command-line tool. Thin: parses arguments, calls the library, prints.
 //!
-//! Exit status: 0 collision-free, 1 collision found, 2 unusable input (message on stderr).
+//! Exit status, every command: 2 when the input cannot be used (the message on stderr names
+//! the file, the body and the field) or an output file cannot be written.
+//! * `check`: 0 collision-free, 1 collision found.
+//! * `solve`: 0 a collision-free schedule found, 1 none found within the limits.
+//! * `evaluate`: 0 the schedule is collision-free, 1 it collides.
+
+mod cli;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Duration;
-use std::time::Instant;
-use workcell::cell::{check_precision, load_scene, InputError};
-use workcell::collision::{check, CheckOptions, CheckReport};
+use workcell::collision::CheckOptions;
 use workcell::motion::BoundKind;
 
 #[derive(Parser)]
@@ -48,6 +50,36 @@ enum Command {
         #[arg(long)]
         per_pair: bool,
     },
+    /// Schedule a cell: plan every move, sequence the tasks, check the schedule and re-plan
+    /// around collisions until it is collision-free.
+    ///
+    /// Exit status: 0 collision-free schedule found, 1 none found, 2 unusable input.
+    Solve {
+        /// Cell file (JSON, see README: "Cell file").
+        cell: PathBuf,
+        #[command(flatten)]
+        out: cli::solve::Outputs,
+        /// Seed of the sequencer's search: the same seed gives the same schedule.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Rounds of sequencing, checking and feedback before giving up.
+        #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u64).range(1..))]
+        max_iterations: u64,
+        /// Write the work-cell graph (nodes and each robot's travel times) to this file.
+        #[arg(long)]
+        export_graph: Option<PathBuf>,
+    },
+    /// Time and check given sequences (the `sequences` object of a solve result).
+    ///
+    /// Exit status: 0 collision-free, 1 the schedule collides, 2 unusable input.
+    Evaluate {
+        /// Cell file (JSON, see README: "Cell file").
+        cell: PathBuf,
+        /// Sequences file: `{"R1": ["weld-3", "weld-1"], ...}` or a whole solve result.
+        sequences: PathBuf,
+        #[command(flatten)]
+        out: cli::solve::Outputs,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -65,7 +97,7 @@ fn positive(s: &str) -> Result<f64, String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
+    let result = match cli.command {
         Command::Check {
             scene,
             json,
@@ -84,122 +116,32 @@ fn main() -> ExitCode {
                 },
                 ..CheckOptions::default()
             };
-            match run_check(&scene, json, &opts) {
-                Ok(code) => code,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::from(2)
-                }
-            }
+            cli::check::run_check(&scene, json, &opts)
         }
-    }
-}
-
-fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
-    let loaded = load_scene(path)?;
-    check_precision(
-        &loaded.scene,
-        opts.delta.unwrap_or(loaded.scene.delta),
-        path,
-    )?;
-    for w in &loaded.warnings {
-        eprintln!("warning: {w}");
-    }
-    // Start the thread pool before the clock: the run time is the check's alone.
-    let threads = rayon::current_num_threads();
-    let start = Instant::now();
-    let report = check(&loaded.scene, opts);
-    let elapsed = start.elapsed();
-    let text = if json {
-        serde_json::to_string_pretty(&report).expect("a report always serialises") + "\n"
-    } else {
-        summary(path, &report, elapsed, threads)
+        Command::Solve {
+            cell,
+            out,
+            seed,
+            max_iterations,
+            export_graph,
+        } => cli::solve::run_solve(
+            &cell,
+            &out,
+            seed,
+            max_iterations as usize,
+            export_graph.as_deref(),
+        ),
+        Command::Evaluate {
+            cell,
+            sequences,
+            out,
+        } => cli::solve::run_evaluate(&cell, &sequences, &out),
     };
-    // A closed pipe (`| head`) is the reader's choice, not an error of ours.
-    let _ = std::io::stdout().write_all(text.as_bytes());
-    if report.stats.unresolved > 0 {
-        return Err(InputError {
-            file: path.to_path_buf(),
-            body: None,
-            field: String::new(),
-            reason: format!(
-                "{} intervals could not be resolved in f64 at these coordinates: no proof",
-                report.stats.unresolved
-            ),
-        });
-    }
-    Ok(ExitCode::from(u8::from(report.collision)))
-}
-
-fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> String {
-    let mut out = String::new();
-    let mut line = |l: String| {
-        out.push_str(&l);
-        out.push('\n');
-    };
-    match &r.first_contact {
-        None => line(format!(
-            "{}: collision-free over [{}, {}] (delta {})",
-            path.display(),
-            r.horizon[0],
-            r.horizon[1],
-            r.delta
-        )),
-        Some(c) => {
-            line(format!(
-                "{}: COLLISION between {} and {} at t = {} (merged interval {}, distance {:.6e} < delta {})",
-                path.display(),
-                c.bodies[0],
-                c.bodies[1],
-                time(c.time),
-                c.interval,
-                c.distance,
-                r.delta
-            ));
-            let proven = if r.certified {
-                "certified"
-            } else {
-                "within the grazing allowance"
-            };
-            line(format!(
-                "collision-free until t = {} ({proven}; time tolerance {:.3e})",
-                time(r.safe_until),
-                r.time_tol
-            ));
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
-    }
-    let s = &r.stats;
-    line(format!(
-        "intervals {}, bisections {}, narrow-phase calls {}, feature steps {}, walk fallbacks {}, convexity certificates {}",
-        s.intervals, s.bisections, s.narrow_phase_calls, s.feature_steps, s.walk_fallbacks, s.convexity_certificates
-    ));
-    for p in r.pair_stats.iter().flatten() {
-        let s = &p.stats;
-        line(format!(
-            "  {} - {}: {} of {} merged intervals, bisections {}, narrow-phase calls {}, feature steps {}",
-            p.bodies[0], p.bodies[1], s.intervals, p.merged_intervals, s.bisections, s.narrow_phase_calls, s.feature_steps
-        ));
-    }
-    if s.grazing > 0 {
-        line(format!(
-            "NOT CERTIFIED: {} intervals (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - 1e-4)",
-            s.grazing
-        ));
-    }
-    line(format!(
-        "{} pairs checked in {:.3} ms on {} threads",
-        r.pairs,
-        elapsed.as_secs_f64() * 1e3,
-        threads
-    ));
-    out
-}
-
-/// A time for people: nine decimals, or nine significant digits when it is huge.
-fn time(t: f64) -> String {
-    if t.abs() < 1e9 {
-        format!("{t:.9}")
-    } else {
-        format!("{t:.9e}")
     }
 }

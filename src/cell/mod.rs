@@ -1,10 +1,16 @@
-//! The model's files: reading scenes (the contract's section 1) with errors that name the
+//! The model's files: reading scenes (the contract's section 1) and cells (section 3) with errors that name the
 //! file, the body and the field.
 
+mod cell_file;
 mod error;
 mod precision;
 mod scene_file;
+mod scene_writer;
+mod sequences_file;
 
+pub use cell_file::{load_cell, parse_cell, Cell, CellObstacle, CellRobot, LoadedCell, Task};
 pub use error::InputError;
 pub use precision::{check_precision, MAX_COORDINATE_OVER_DELTA};
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
+pub use scene_writer::scene_document;
+pub use sequences_file::{load_sequences, parse_sequences};

@@ -151,9 +151,9 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     })
 }
 
-/// The name of the robot or obstacle that a field path such as `robots[2].shape` points
+/// The name of the robot, obstacle or task that a field path such as `robots[2].shape` points
 /// into, when the document is valid enough JSON to find it.
-fn body_named_by(text: &str, field: &str) -> Option<String> {
+pub(super) fn body_named_by(text: &str, field: &str) -> Option<String> {
     // Only the names are read, everything else is skipped unparsed: the field that failed
     // (say a number out of range) must not fail this too.
     #[derive(Deserialize)]
@@ -166,6 +166,8 @@ fn body_named_by(text: &str, field: &str) -> Option<String> {
         robots: Vec<Named>,
         #[serde(default)]
         obstacles: Vec<Named>,
+        #[serde(default)]
+        tasks: Vec<Named>,
     }
     let (list, rest) = field.split_once('[')?;
     let index: usize = rest.split_once(']')?.0.parse().ok()?;
@@ -173,12 +175,13 @@ fn body_named_by(text: &str, field: &str) -> Option<String> {
     let bodies = match list {
         "robots" => names.robots,
         "obstacles" => names.obstacles,
+        "tasks" => names.tasks,
         _ => return None,
     };
     bodies.into_iter().nth(index)?.name
 }
 
-fn check_name(
+pub(super) fn check_name(
     file: &Path,
     name: &str,
     at: &str,
@@ -203,7 +206,7 @@ fn check_name(
     Ok(())
 }
 
-fn polygon(
+pub(super) fn polygon(
     file: &Path,
     body: &str,
     field: &str,

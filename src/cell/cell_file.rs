@@ -1,0 +1,407 @@
+//! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
+
+use super::scene_file::{body_named_by, polygon, DEFAULT_DELTA};
+use super::{InputError, MAX_COORDINATE_OVER_DELTA};
+use crate::collision::Body;
+use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
+use crate::motion::Pose;
+use serde::Deserialize;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+#[derive(Deserialize)]
+#[serde(
+    expecting = "a cell: an object with `robots`, `tasks` and optional `delta` and `obstacles`"
+)]
+struct RawCell {
+    #[serde(default)]
+    delta: Option<f64>,
+    robots: Vec<RawRobot>,
+    #[serde(default)]
+    obstacles: Vec<RawObstacle>,
+    tasks: Vec<RawTask>,
+}
+
+#[derive(Deserialize)]
+#[serde(
+    expecting = "a robot: an object with `name`, `shape`, `home`, `max_speed`, `max_accel` and `max_turn_rate`"
+)]
+struct RawRobot {
+    name: String,
+    shape: Vec<Vec<f64>>,
+    home: Vec<f64>,
+    max_speed: f64,
+    max_accel: f64,
+    max_turn_rate: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(expecting = "an obstacle: an object with `name` and `shape`")]
+struct RawObstacle {
+    name: String,
+    shape: Vec<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(expecting = "a task: an object with `name`, `at`, `duration` and optional `robots`")]
+struct RawTask {
+    name: String,
+    at: Vec<f64>,
+    duration: f64,
+    #[serde(default)]
+    robots: Option<Vec<String>>,
+}
+
+/// A robot of the cell: its shape, home and limits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellRobot {
+    /// Name, unique among robots, obstacles and tasks.
+    pub name: String,
+    /// Shape in the body frame (origin: the rotation centre G).
+    pub shape: ConvexPolygon,
+    /// Where the robot starts and ends.
+    pub home: Pose,
+    /// Largest speed of G.
+    pub max_speed: f64,
+    /// Largest acceleration of G.
+    pub max_accel: f64,
+    /// Largest angular speed.
+    pub max_turn_rate: f64,
+}
+
+/// A fixed obstacle in world coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellObstacle {
+    /// Name, unique among robots, obstacles and tasks.
+    pub name: String,
+    /// Shape in world coordinates.
+    pub shape: ConvexPolygon,
+}
+
+/// A task: a pose to hold for a duration, by one of the allowed robots.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Task {
+    /// Name, unique among robots, obstacles and tasks.
+    pub name: String,
+    /// The pose the robot holds while doing the task.
+    pub at: Pose,
+    /// How long the robot stays at `at`.
+    pub duration: f64,
+    /// Indices (into [`Cell::robots`]) of the robots allowed to do it, increasing.
+    pub robots: Vec<usize>,
+}
+
+/// A work-cell to schedule (contract section 3), validated.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    /// The file it was read from, to name it in later messages.
+    pub file: PathBuf,
+    /// δ: bodies closer than this collide.
+    pub delta: f64,
+    /// The robots, in file order.
+    pub robots: Vec<CellRobot>,
+    /// The obstacles, in file order.
+    pub obstacles: Vec<CellObstacle>,
+    /// The tasks, in file order.
+    pub tasks: Vec<Task>,
+}
+
+impl Cell {
+    /// The obstacles as checker bodies.
+    pub fn obstacle_bodies(&self) -> Vec<Body> {
+        self.obstacles
+            .iter()
+            .map(|o| Body::obstacle(o.name.clone(), &o.shape))
+            .collect()
+    }
+
+    /// An error about this cell's file.
+    pub fn error(
+        &self,
+        body: Option<&str>,
+        field: impl Into<String>,
+        reason: impl std::fmt::Display,
+    ) -> InputError {
+        InputError::new(&self.file, body, field, reason)
+    }
+}
+
+/// A cell read from a file, with the repairs made on the way (one line each).
+#[derive(Clone, Debug)]
+pub struct LoadedCell {
+    /// The cell.
+    pub cell: Cell,
+    /// Warnings for stderr: clockwise shapes reversed, vertices removed.
+    pub warnings: Vec<String>,
+}
+
+/// Reads and validates the cell file at `path`.
+pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
+    parse_cell(&text, path)
+}
+
+/// Parses and validates a cell document; `file` names it in messages and in [`Cell::file`].
+///
+/// Beyond the syntax: names unique among robots, obstacles and tasks; limits positive and
+/// finite; every home clear of the obstacles by δ; no task pose inside an obstacle; every task
+/// allowed to at least one robot. Whether a robot can *reach* a task is known only after
+/// planning (see `wcp::build_graph`).
+pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let raw: RawCell = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+        let field = match e.path().to_string() {
+            root if root == "." => String::new(),
+            path => path,
+        };
+        let body = body_named_by(text, &field);
+        InputError::new(file, body.as_deref(), field, e.inner())
+    })?;
+    de.end().map_err(|e| {
+        InputError::new(
+            file,
+            None,
+            "",
+            format!("unexpected data after the cell document: {e}"),
+        )
+    })?;
+    let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
+    if !(delta.is_finite() && delta > 0.0) {
+        let reason = format!("must be a positive number, got {delta}");
+        return Err(InputError::new(file, None, "delta", reason));
+    }
+    let mut names = Names::default();
+    let mut warnings = Vec::new();
+    let limit = MAX_COORDINATE_OVER_DELTA * delta;
+    let err = |body: &str, field: String, reason: String| {
+        InputError::new(file, Some(body), field, reason)
+    };
+
+    let mut robots = Vec::with_capacity(raw.robots.len());
+    for (k, r) in raw.robots.iter().enumerate() {
+        let at = format!("robots[{k}]");
+        names.claim(file, &r.name, &at, "robot")?;
+        let shape = polygon(
+            file,
+            &r.name,
+            &format!("{at}.shape"),
+            &r.shape,
+            &mut warnings,
+        )?;
+        if shape.radius() > limit {
+            return Err(err(
+                &r.name,
+                format!("{at}.shape"),
+                too_large(shape.radius(), delta),
+            ));
+        }
+        let home = pose(&r.home).map_err(|reason| err(&r.name, format!("{at}.home"), reason))?;
+        if home.pos.amax() > limit || (shape.radius() * home.theta).abs() > limit {
+            return Err(err(
+                &r.name,
+                format!("{at}.home"),
+                too_large(home.pos.amax(), delta),
+            ));
+        }
+        for (field, value) in [
+            ("max_speed", r.max_speed),
+            ("max_accel", r.max_accel),
+            ("max_turn_rate", r.max_turn_rate),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                let reason = format!("must be a positive number, got {value}");
+                return Err(err(&r.name, format!("{at}.{field}"), reason));
+            }
+        }
+        robots.push(CellRobot {
+            name: r.name.clone(),
+            shape,
+            home,
+            max_speed: r.max_speed,
+            max_accel: r.max_accel,
+            max_turn_rate: r.max_turn_rate,
+        });
+    }
+    if robots.is_empty() {
+        return Err(InputError::new(
+            file,
+            None,
+            "robots",
+            "a cell needs at least one robot",
+        ));
+    }
+
+    let mut obstacles = Vec::with_capacity(raw.obstacles.len());
+    for (k, o) in raw.obstacles.iter().enumerate() {
+        let at = format!("obstacles[{k}]");
+        names.claim(file, &o.name, &at, "obstacle")?;
+        let shape = polygon(
+            file,
+            &o.name,
+            &format!("{at}.shape"),
+            &o.shape,
+            &mut warnings,
+        )?;
+        let extent = shape
+            .vertices()
+            .iter()
+            .map(|v| v.amax())
+            .fold(0.0, f64::max);
+        if extent > limit {
+            return Err(err(
+                &o.name,
+                format!("{at}.shape"),
+                too_large(extent, delta),
+            ));
+        }
+        obstacles.push(CellObstacle {
+            name: o.name.clone(),
+            shape,
+        });
+    }
+
+    // A home too close to an obstacle leaves the robot in collision before it moves.
+    for (k, r) in robots.iter().enumerate() {
+        if let Some((o, d)) = nearest_obstacle(&r.shape, r.home, &obstacles, delta) {
+            let reason = format!(
+                "the robot at its home is {d:.3e} from obstacle \"{}\", closer than delta = {delta}",
+                obstacles[o].name
+            );
+            return Err(err(&r.name, format!("robots[{k}].home"), reason));
+        }
+    }
+
+    let robot_index: HashMap<&str, usize> = robots
+        .iter()
+        .enumerate()
+        .map(|(k, r)| (r.name.as_str(), k))
+        .collect();
+    let mut tasks = Vec::with_capacity(raw.tasks.len());
+    for (k, t) in raw.tasks.iter().enumerate() {
+        let at = format!("tasks[{k}]");
+        names.claim(file, &t.name, &at, "task")?;
+        let pose = pose(&t.at).map_err(|reason| err(&t.name, format!("{at}.at"), reason))?;
+        if pose.pos.amax() > limit {
+            return Err(err(
+                &t.name,
+                format!("{at}.at"),
+                too_large(pose.pos.amax(), delta),
+            ));
+        }
+        if !(t.duration.is_finite() && t.duration >= 0.0) {
+            let reason = format!("must be a non-negative number, got {}", t.duration);
+            return Err(err(&t.name, format!("{at}.duration"), reason));
+        }
+        if let Some(o) = obstacles.iter().find(|o| contains(&o.shape, &pose.pos)) {
+            let reason = format!("the task pose is inside obstacle \"{}\"", o.name);
+            return Err(err(&t.name, format!("{at}.at"), reason));
+        }
+        let allowed = match &t.robots {
+            None => (0..robots.len()).collect(),
+            Some(list) => {
+                let mut allowed = Vec::with_capacity(list.len());
+                for (i, name) in list.iter().enumerate() {
+                    let Some(&r) = robot_index.get(name.as_str()) else {
+                        let reason = format!("no robot is named \"{name}\"");
+                        return Err(err(&t.name, format!("{at}.robots[{i}]"), reason));
+                    };
+                    allowed.push(r);
+                }
+                allowed.sort_unstable();
+                allowed.dedup();
+                allowed
+            }
+        };
+        if allowed.is_empty() {
+            let reason = "no robot may do this task: the list is empty";
+            return Err(err(&t.name, format!("{at}.robots"), reason.into()));
+        }
+        tasks.push(Task {
+            name: t.name.clone(),
+            at: pose,
+            duration: t.duration,
+            robots: allowed,
+        });
+    }
+
+    let cell = Cell {
+        file: file.to_path_buf(),
+        delta,
+        robots,
+        obstacles,
+        tasks,
+    };
+    Ok(LoadedCell { cell, warnings })
+}
+
+/// Names already used, to refuse duplicates among robots, obstacles and tasks: homes and
+/// tasks share the graph's node names.
+#[derive(Default)]
+struct Names(HashMap<String, String>);
+
+impl Names {
+    fn claim(&mut self, file: &Path, name: &str, at: &str, kind: &str) -> Result<(), InputError> {
+        if name.is_empty() {
+            let reason = format!("a {kind} needs a non-empty name");
+            return Err(InputError::new(file, None, format!("{at}.name"), reason));
+        }
+        if let Some(first) = self.0.get(name) {
+            let reason = format!("the name is already used by {first}");
+            return Err(InputError::new(
+                file,
+                Some(name),
+                format!("{at}.name"),
+                reason,
+            ));
+        }
+        self.0.insert(name.to_owned(), format!("{kind} `{at}`"));
+        Ok(())
+    }
+}
+
+/// `[x, y]` or `[x, y, theta]`.
+fn pose(values: &[f64]) -> Result<Pose, String> {
+    let (x, y, theta) = match *values {
+        [x, y] => (x, y, 0.0),
+        [x, y, theta] => (x, y, theta),
+        _ => {
+            return Err(format!(
+                "a pose is [x, y] or [x, y, theta], found {} numbers",
+                values.len()
+            ))
+        }
+    };
+    Ok(Pose {
+        pos: Vec2::new(x, y),
+        theta,
+    })
+}
+
+fn too_large(value: f64, delta: f64) -> String {
+    format!(
+        "coordinate {value:e} is too large for delta = {delta:e} (limit {:e}): f64 cannot \
+         resolve delta there; move the origin or raise delta",
+        MAX_COORDINATE_OVER_DELTA * delta
+    )
+}
+
+fn contains(shape: &ConvexPolygon, p: &Vec2) -> bool {
+    let n = shape.vertices().len();
+    (0..n).all(|i| shape.normals()[i].dot(&(p - shape.vertices()[i])) < 0.0)
+}
+
+/// The first obstacle closer than δ to the robot placed at `pose`, with its distance.
+pub(crate) fn nearest_obstacle(
+    shape: &ConvexPolygon,
+    pose: Pose,
+    obstacles: &[CellObstacle],
+    delta: f64,
+) -> Option<(usize, f64)> {
+    let robot = Posed::new(shape, pose.pos.x, pose.pos.y, pose.theta);
+    obstacles.iter().enumerate().find_map(|(k, o)| {
+        let obstacle = Posed::new(&o.shape, 0.0, 0.0, 0.0);
+        let d = closest_features(&robot, &obstacle, None, &WalkTolerances::default()).distance;
+        (d < delta).then_some((k, d))
+    })
+}

@@ -1,0 +1,64 @@
+//! `workcell evaluate`: the schedule of given sequences, checked.
+
+use super::feedback::{SolveOptions, StageTimes};
+use super::moves::node_name;
+use super::schedule::{Collision, MoveCache, Schedule};
+use crate::cell::{Cell, InputError};
+use crate::collision::{check, CheckReport};
+use std::path::Path;
+use std::time::Instant;
+
+/// The verdict on given sequences.
+#[derive(Clone, Debug)]
+pub struct Evaluated {
+    /// Their schedule.
+    pub schedule: Schedule,
+    /// The checker's report on it.
+    pub report: CheckReport,
+    /// Its first collision, if any.
+    pub collision: Option<Collision>,
+    /// True when the schedule is certified collision-free.
+    pub collision_free: bool,
+    /// Wall time per stage (planning counts the moves planned for these sequences only).
+    pub times: StageTimes,
+}
+
+/// Times the robots' `routes` (task indices, as [`crate::cell::parse_sequences`] gives them)
+/// without waits, and checks the schedule. A move the planner cannot make, or that the
+/// checker does not certify against the obstacles, is an input error about
+/// `sequences_file`.
+pub fn evaluate(
+    cell: &Cell,
+    routes: &[Vec<usize>],
+    opts: &SolveOptions,
+    sequences_file: &Path,
+) -> Result<Evaluated, InputError> {
+    let mut times = StageTimes::default();
+    let clock = Instant::now();
+    let mut cache = MoveCache::new(cell, opts.planner);
+    let schedule = Schedule::build(cell, routes, &[], &mut cache).map_err(|e| {
+        let robot = &cell.robots[e.robot].name;
+        let task = if e.to != 0 { e.to } else { e.from } - 1;
+        let k = routes[e.robot].iter().position(|&t| t == task).unwrap_or(0);
+        let reason = format!(
+            "{robot} cannot move from {} to {}: {}",
+            node_name(cell, e.robot, e.from),
+            node_name(cell, e.robot, e.to),
+            e.why
+        );
+        InputError::new(sequences_file, Some(robot), format!("{robot}[{k}]"), reason)
+    })?;
+    times.scheduling = clock.elapsed();
+    let clock = Instant::now();
+    let report = check(&schedule.scene(cell), &opts.check);
+    times.checking = clock.elapsed();
+    let collision = schedule.collision(cell, &report);
+    let collision_free = collision.is_none() && report.certified;
+    Ok(Evaluated {
+        schedule,
+        report,
+        collision,
+        collision_free,
+        times,
+    })
+}

@@ -1,0 +1,366 @@
+//! The loop of the Work-Cell Problem: sequence, schedule, check, feed the first collision
+//! back, until the schedule is collision-free.
+
+use super::graph::{check_reachable, WcpGraph};
+use super::moves::MoveTable;
+use super::schedule::{Activity, Collision, Delay, MoveCache, Schedule};
+use super::sequencer::{self, Conflict, Instance, SequencerError, SequencerOptions};
+use crate::cell::{Cell, InputError};
+use crate::collision::{check, CheckOptions, CheckReport};
+use crate::planning::PlannerOptions;
+use std::time::{Duration, Instant};
+
+/// Settings of a solve.
+#[derive(Clone, Debug)]
+pub struct SolveOptions {
+    /// Rounds of sequencing, checking and feedback before giving up.
+    pub max_iterations: usize,
+    /// The sequencer's settings, its seed among them.
+    pub sequencer: SequencerOptions,
+    /// The planner's settings.
+    pub planner: PlannerOptions,
+    /// The checker's settings for the schedules.
+    pub check: CheckOptions,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            max_iterations: 50,
+            sequencer: SequencerOptions::default(),
+            planner: PlannerOptions::default(),
+            check: CheckOptions::default(),
+        }
+    }
+}
+
+/// Progress of a solve, for a progress bar. Called from the solving thread, except
+/// `move_planned`, which planning threads call.
+pub trait Progress: Sync {
+    /// Planning starts: `total` moves to plan and certify.
+    fn planning(&self, _total: usize) {}
+    /// One more move planned.
+    fn move_planned(&self) {}
+    /// Round `k` (from 1) checked a schedule of this makespan.
+    fn iteration(&self, _k: usize, _makespan: f64, _collision: Option<&Collision>) {}
+}
+
+impl Progress for () {}
+
+/// Wall time spent in each stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Planning and certifying every move.
+    pub planning: Duration,
+    /// Building the graph and the sequencer's instance.
+    pub graph: Duration,
+    /// Sequencer runs.
+    pub sequencing: Duration,
+    /// Timing the schedules (including moves planned on demand).
+    pub scheduling: Duration,
+    /// Collision checks of the schedules.
+    pub checking: Duration,
+}
+
+/// How one round's collision was removed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Remedy {
+    /// The sequencer re-planned with the colliding pair of steps forbidden.
+    Resequence,
+    /// A robot waits before one of its moves.
+    Delay(Delay),
+}
+
+/// One round of the loop.
+#[derive(Clone, Debug)]
+pub struct Iteration {
+    /// Makespan of the schedule checked in this round.
+    pub makespan: f64,
+    /// Its first collision, if any.
+    pub collision: Option<Collision>,
+    /// What was done about it (`None` in the last round).
+    pub remedy: Option<Remedy>,
+}
+
+/// The cell's moves and graph, ready for sequencing.
+pub struct Prepared {
+    /// Every robot's certified moves.
+    pub moves: MoveTable,
+    /// The work-cell graph.
+    pub graph: WcpGraph,
+    /// The sequencer's instance, read from the graph.
+    pub instance: Instance,
+    /// Time spent so far.
+    pub times: StageTimes,
+}
+
+/// A solve's result.
+#[derive(Clone, Debug)]
+pub struct Solved {
+    /// Each robot's tasks in order.
+    pub routes: Vec<Vec<usize>>,
+    /// Waits added by the loop.
+    pub delays: Vec<Delay>,
+    /// The final schedule.
+    pub schedule: Schedule,
+    /// The checker's report on the final schedule.
+    pub report: CheckReport,
+    /// True when the final schedule is certified collision-free.
+    pub collision_free: bool,
+    /// Every round, in order; the last one checked the final schedule.
+    pub iterations: Vec<Iteration>,
+    /// Makespan of the collision-blind best schedule (the first round's).
+    pub blind_makespan: f64,
+    /// Whether the sequencer proved that one optimal.
+    pub blind_optimal: bool,
+    /// Why the loop stopped without a collision-free schedule.
+    pub failure: Option<String>,
+    /// Wall time per stage.
+    pub times: StageTimes,
+}
+
+/// Plans and certifies every move, builds the graph and the sequencer's instance. A task
+/// that no allowed robot can reach is an input error.
+pub fn prepare(
+    cell: &Cell,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Prepared, InputError> {
+    let mut times = StageTimes::default();
+    let clock = Instant::now();
+    progress.planning(move_count(cell));
+    let moves = MoveTable::build(cell, &opts.planner, &|| progress.move_planned());
+    check_reachable(cell, &moves)?;
+    times.planning = clock.elapsed();
+    let clock = Instant::now();
+    let graph = WcpGraph::new(cell, &moves);
+    let instance = graph.instance(cell).map_err(|e| sequencer_error(cell, e))?;
+    times.graph = clock.elapsed();
+    Ok(Prepared {
+        moves,
+        graph,
+        instance,
+        times,
+    })
+}
+
+fn move_count(cell: &Cell) -> usize {
+    (0..cell.robots.len())
+        .map(|r| {
+            let n = 1 + cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
+            n * (n - 1) / 2
+        })
+        .sum()
+}
+
+/// A sequencer error in the cell's terms.
+pub fn sequencer_error(cell: &Cell, e: SequencerError) -> InputError {
+    match e {
+        SequencerError::TaskUnassignable { task } => cell.error(
+            Some(&cell.tasks[task].name),
+            format!("tasks[{task}]"),
+            "no allowed robot can travel to this task and back home",
+        ),
+        other => cell.error(None, "", other),
+    }
+}
+
+/// Solves the cell: the loop of the module's documentation, at most
+/// `opts.max_iterations` rounds.
+pub fn solve(
+    cell: &Cell,
+    prepared: &Prepared,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Solved, InputError> {
+    let mut times = prepared.times;
+    let inst = &prepared.instance;
+    let mut cache = MoveCache::new(cell, opts.planner);
+    let mut conflicts: Vec<Conflict> = Vec::new();
+    let clock = Instant::now();
+    let blind =
+        sequencer::solve(inst, &[], &opts.sequencer).map_err(|e| sequencer_error(cell, e))?;
+    times.sequencing += clock.elapsed();
+    let mut routes = blind.sequences.clone();
+    let mut delays: Vec<Delay> = Vec::new();
+    let mut iterations = Vec::new();
+    loop {
+        let clock = Instant::now();
+        let schedule = build(cell, &routes, &delays, &mut cache)?;
+        times.scheduling += clock.elapsed();
+        let clock = Instant::now();
+        let report = check(&schedule.scene(cell), &opts.check);
+        times.checking += clock.elapsed();
+        let collision = schedule.collision(cell, &report);
+        progress.iteration(iterations.len() + 1, schedule.makespan, collision.as_ref());
+        let done = |failure: Option<String>, iterations, times| {
+            Ok(Solved {
+                collision_free: failure.is_none(),
+                routes: routes.clone(),
+                delays: delays.clone(),
+                schedule: schedule.clone(),
+                report: report.clone(),
+                iterations,
+                blind_makespan: blind.makespan,
+                blind_optimal: blind.optimal,
+                failure,
+                times,
+            })
+        };
+        let Some(c) = collision else {
+            iterations.push(Iteration {
+                makespan: schedule.makespan,
+                collision: None,
+                remedy: None,
+            });
+            let failure = (!report.certified).then(|| {
+                "the checker cannot certify the schedule: two bodies graze delta".to_owned()
+            });
+            return done(failure, iterations, times);
+        };
+        if iterations.len() + 1 >= opts.max_iterations {
+            let failure = format!(
+                "no collision-free schedule within {} iterations; the last one collides: {}",
+                opts.max_iterations,
+                describe(cell, &c)
+            );
+            iterations.push(Iteration {
+                makespan: schedule.makespan,
+                collision: Some(c),
+                remedy: None,
+            });
+            return done(Some(failure), iterations, times);
+        }
+        // Candidates: re-sequencing with the colliding steps forbidden together, or one of
+        // the two robots waiting until the other's activity is over. The smaller makespan wins;
+        // re-sequencing wins ties, since it removes the conflict rather than timing around it.
+        let mut best: Option<Candidate> = None;
+        if let (Some(b), Some(seg_b)) = (c.robots.1, c.segments.1) {
+            let a = c.robots.0;
+            conflicts.push(Conflict {
+                a: (a, c.segments.0.activity.step()),
+                b: (b, seg_b.activity.step()),
+            });
+            let clock = Instant::now();
+            let resequenced = sequencer::solve(inst, &conflicts, &opts.sequencer)
+                .map_err(|e| sequencer_error(cell, e))?;
+            times.sequencing += clock.elapsed();
+            if resequenced.violations == 0 {
+                best = Some(Candidate {
+                    makespan: resequenced.makespan,
+                    remedy: Remedy::Resequence,
+                    routes: resequenced.sequences,
+                    delays: Vec::new(),
+                });
+            }
+            let clock = Instant::now();
+            for (x, seg_x, seg_y) in [(a, c.segments.0, seg_b), (b, seg_b, c.segments.0)] {
+                let Some(delay) = delay_until(
+                    &schedule.robots[x].segments,
+                    x,
+                    seg_x.delayable_move,
+                    seg_y.end,
+                ) else {
+                    continue;
+                };
+                let mut candidate = delays.clone();
+                candidate.push(delay);
+                let makespan = build(cell, &routes, &candidate, &mut cache)?.makespan;
+                if best.as_ref().map_or(true, |b| makespan < b.makespan) {
+                    best = Some(Candidate {
+                        makespan,
+                        remedy: Remedy::Delay(delay),
+                        routes: routes.clone(),
+                        delays: candidate,
+                    });
+                }
+            }
+            times.scheduling += clock.elapsed();
+        }
+        let Some(Candidate {
+            remedy,
+            routes: next_routes,
+            delays: next_delays,
+            ..
+        }) = best
+        else {
+            let failure = format!("no remedy for the collision: {}", describe(cell, &c));
+            iterations.push(Iteration {
+                makespan: schedule.makespan,
+                collision: Some(c),
+                remedy: None,
+            });
+            return done(Some(failure), iterations, times);
+        };
+        iterations.push(Iteration {
+            makespan: schedule.makespan,
+            collision: Some(c),
+            remedy: Some(remedy),
+        });
+        routes = next_routes;
+        delays = next_delays;
+    }
+}
+
+/// A way out of a collision, and the makespan it leads to.
+struct Candidate {
+    makespan: f64,
+    remedy: Remedy,
+    routes: Vec<Vec<usize>>,
+    delays: Vec<Delay>,
+}
+
+/// A wait that makes robot `x` start move `m` when the other robot's activity ends.
+fn delay_until(
+    segments: &[super::schedule::Segment],
+    x: usize,
+    m: Option<usize>,
+    other_end: f64,
+) -> Option<Delay> {
+    let m = m?;
+    let (start, nodes) = segments.iter().find_map(|s| match s.activity {
+        Activity::Move { from, to } if s.delayable_move == Some(m) => Some((s.start, (from, to))),
+        _ => None,
+    })?;
+    let duration = other_end - start;
+    (duration.is_finite() && duration > 0.0).then_some(Delay {
+        robot: x,
+        before_move: m,
+        nodes,
+        duration,
+    })
+}
+
+fn build(
+    cell: &Cell,
+    routes: &[Vec<usize>],
+    delays: &[Delay],
+    cache: &mut MoveCache,
+) -> Result<Schedule, InputError> {
+    Schedule::build(cell, routes, delays, cache).map_err(|e| {
+        // The table certified every move the sequencer may choose: a failure here means the
+        // planner is not deterministic, a defect to report rather than hide.
+        cell.error(
+            Some(&cell.robots[e.robot].name),
+            "",
+            format!(
+                "internal error: a move certified before fails now: {}",
+                e.why
+            ),
+        )
+    })
+}
+
+/// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
+pub fn describe(cell: &Cell, c: &Collision) -> String {
+    let a = format!(
+        "{} ({})",
+        c.bodies[0],
+        c.segments.0.activity.describe(cell, c.robots.0)
+    );
+    let b = match (c.robots.1, c.segments.1) {
+        (Some(b), Some(s)) => format!("{} ({})", c.bodies[1], s.activity.describe(cell, b)),
+        _ => format!("obstacle {}", c.bodies[1]),
+    };
+    format!("{a} and {b} at t = {:.6}", c.time)
+}

@@ -1,0 +1,306 @@
+//! What `solve` and `evaluate` print: the contract's JSON (section 4, with optional fields
+//! added) and the human summary.
+
+use super::feedback::{describe, Iteration, Remedy, StageTimes};
+use super::moves::node_name;
+use super::schedule::{Activity, Collision, Schedule};
+use crate::cell::Cell;
+use crate::collision::Stats;
+use serde::ser::{SerializeMap, Serializer};
+use serde::Serialize;
+use std::fmt::Write;
+
+/// The JSON of `solve --json` and `evaluate --json`.
+#[derive(Serialize)]
+pub struct ResultJson<'a> {
+    /// When the last robot is back home.
+    pub makespan: f64,
+    /// The final schedule is certified collision-free.
+    pub collision_free: bool,
+    /// Each robot's tasks in order, robots in the cell's order.
+    #[serde(serialize_with = "ordered_map")]
+    pub sequences: Vec<(&'a str, Vec<&'a str>)>,
+    /// Rounds of sequencing, checking and feedback (1 for `evaluate`).
+    pub iterations: usize,
+    /// Makespan of the collision-blind best schedule (solve only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blind_makespan: Option<f64>,
+    /// The sequencer proved the collision-blind schedule optimal (solve only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blind_optimal: Option<bool>,
+    /// The first collision of the final schedule, when there is one.
+    pub first_collision: Option<CollisionJson>,
+    /// Every round: its makespan, collision and remedy (solve only).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub feedback: Vec<RoundJson>,
+    /// Why no collision-free schedule was found, if so.
+    pub failure: Option<String>,
+    /// Each robot's activities with their times.
+    #[serde(serialize_with = "ordered_map")]
+    pub schedule: Vec<(&'a str, Vec<SegmentJson<'a>>)>,
+    /// The checker's counters on the final schedule.
+    pub check_stats: Stats,
+    /// Wall time per stage, in milliseconds.
+    pub stages_ms: StagesJson,
+}
+
+/// A collision in the JSON.
+#[derive(Serialize)]
+pub struct CollisionJson {
+    /// Time of the first contact.
+    pub time: f64,
+    /// The two bodies, robot first.
+    pub bodies: [String; 2],
+    /// What each was doing, e.g. `move weld-1 -> weld-2`, `task weld-3`, `obstacle`.
+    pub activities: [String; 2],
+    /// Midpoint of the closest points.
+    pub point: [f64; 2],
+}
+
+/// One round of the loop in the JSON.
+#[derive(Serialize)]
+pub struct RoundJson {
+    /// Round number, from 1.
+    pub iteration: usize,
+    /// Makespan of the schedule checked.
+    pub makespan: f64,
+    /// Its first collision.
+    pub collision: Option<CollisionJson>,
+    /// `"resequence"`, `"delay"` or null.
+    pub remedy: Option<&'static str>,
+    /// For a delay: who waits, where, how long.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub delay: Option<DelayJson>,
+}
+
+/// A delay in the JSON.
+#[derive(Serialize)]
+pub struct DelayJson {
+    /// The robot that waits.
+    pub robot: String,
+    /// The move it waits before, e.g. `move weld-1 -> weld-2`.
+    pub before: String,
+    /// How long.
+    pub duration: f64,
+}
+
+/// One activity in the JSON.
+#[derive(Serialize)]
+pub struct SegmentJson<'a> {
+    /// `move`, `task` or `wait`.
+    pub activity: &'static str,
+    /// Source node of a move, the node of a task or wait.
+    pub at: &'a str,
+    /// Target node of a move.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to: Option<&'a str>,
+    /// Start time.
+    pub start: f64,
+    /// End time.
+    pub end: f64,
+}
+
+/// Stage times in milliseconds.
+#[derive(Serialize)]
+pub struct StagesJson {
+    planning: f64,
+    graph: f64,
+    sequencing: f64,
+    scheduling: f64,
+    checking: f64,
+}
+
+impl From<StageTimes> for StagesJson {
+    fn from(t: StageTimes) -> Self {
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        StagesJson {
+            planning: ms(t.planning),
+            graph: ms(t.graph),
+            sequencing: ms(t.sequencing),
+            scheduling: ms(t.scheduling),
+            checking: ms(t.checking),
+        }
+    }
+}
+
+fn ordered_map<S: Serializer, V: Serialize>(pairs: &[(&str, V)], s: S) -> Result<S::Ok, S::Error> {
+    let mut map = s.serialize_map(Some(pairs.len()))?;
+    for (k, v) in pairs {
+        map.serialize_entry(k, v)?;
+    }
+    map.end()
+}
+
+/// A collision in the JSON's terms.
+pub fn collision_json(cell: &Cell, c: &Collision) -> CollisionJson {
+    let b = match (c.robots.1, c.segments.1) {
+        (Some(b), Some(s)) => s.activity.describe(cell, b),
+        _ => "obstacle".to_owned(),
+    };
+    CollisionJson {
+        time: c.time,
+        bodies: c.bodies.clone(),
+        activities: [c.segments.0.activity.describe(cell, c.robots.0), b],
+        point: [c.point.x, c.point.y],
+    }
+}
+
+/// The rounds of a solve in the JSON's terms.
+pub fn rounds_json(cell: &Cell, iterations: &[Iteration]) -> Vec<RoundJson> {
+    iterations
+        .iter()
+        .enumerate()
+        .map(|(k, it)| RoundJson {
+            iteration: k + 1,
+            makespan: it.makespan,
+            collision: it.collision.as_ref().map(|c| collision_json(cell, c)),
+            remedy: it.remedy.map(|r| match r {
+                Remedy::Resequence => "resequence",
+                Remedy::Delay(_) => "delay",
+            }),
+            delay: match it.remedy {
+                Some(Remedy::Delay(d)) => Some(DelayJson {
+                    robot: cell.robots[d.robot].name.clone(),
+                    before: Activity::Move {
+                        from: d.nodes.0,
+                        to: d.nodes.1,
+                    }
+                    .describe(cell, d.robot),
+                    duration: d.duration,
+                }),
+                _ => None,
+            },
+        })
+        .collect()
+}
+
+/// Sequences and schedule of `schedule` in the JSON's terms.
+#[allow(clippy::type_complexity)]
+pub fn schedule_json<'a>(
+    cell: &'a Cell,
+    schedule: &Schedule,
+) -> (
+    Vec<(&'a str, Vec<&'a str>)>,
+    Vec<(&'a str, Vec<SegmentJson<'a>>)>,
+) {
+    let sequences = cell
+        .robots
+        .iter()
+        .zip(&schedule.robots)
+        .map(|(r, s)| {
+            (
+                r.name.as_str(),
+                s.route
+                    .iter()
+                    .map(|&t| cell.tasks[t].name.as_str())
+                    .collect(),
+            )
+        })
+        .collect();
+    let timeline = schedule
+        .robots
+        .iter()
+        .enumerate()
+        .map(|(r, s)| {
+            let segments = s
+                .segments
+                .iter()
+                .filter_map(|seg| {
+                    let (activity, at, to) = match seg.activity {
+                        Activity::Move { from, to } => (
+                            "move",
+                            node_name(cell, r, from),
+                            Some(node_name(cell, r, to)),
+                        ),
+                        Activity::Work(t) => ("task", cell.tasks[t].name.as_str(), None),
+                        Activity::Wait(node) => ("wait", node_name(cell, r, node), None),
+                        Activity::Done => return None,
+                    };
+                    Some(SegmentJson {
+                        activity,
+                        at,
+                        to,
+                        start: seg.start,
+                        end: seg.end,
+                    })
+                })
+                .collect();
+            (cell.robots[r].name.as_str(), segments)
+        })
+        .collect();
+    (sequences, timeline)
+}
+
+/// The human summary: makespan, each robot's sequence with times, the rounds of the loop and
+/// the time per stage.
+pub fn summary(
+    cell: &Cell,
+    schedule: &Schedule,
+    rounds: &[Iteration],
+    final_collision: Option<&Collision>,
+    times: StageTimes,
+) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "makespan {:.3}", schedule.makespan);
+    for (r, s) in schedule.robots.iter().enumerate() {
+        let _ = write!(out, "  {} ", cell.robots[r].name);
+        if s.route.is_empty() {
+            let _ = writeln!(out, "stays home");
+            continue;
+        }
+        let mut steps = Vec::new();
+        for seg in &s.segments {
+            match seg.activity {
+                Activity::Work(t) => steps.push(format!(
+                    "{} [{:.2}-{:.2}]",
+                    cell.tasks[t].name, seg.start, seg.end
+                )),
+                Activity::Wait(_) => steps.push(format!(
+                    "{} [{:.2}-{:.2}]",
+                    seg.activity.describe(cell, r),
+                    seg.start,
+                    seg.end
+                )),
+                _ => {}
+            }
+        }
+        let _ = writeln!(out, "{} -> home at {:.2}", steps.join(" -> "), s.end);
+    }
+    for (k, it) in rounds.iter().enumerate() {
+        let what = match (&it.collision, it.remedy) {
+            (None, _) => "collision-free".to_owned(),
+            (Some(c), Some(Remedy::Resequence)) => format!("{}; re-sequenced", describe(cell, c)),
+            (Some(c), Some(Remedy::Delay(d))) => format!(
+                "{}; {} waits {:.3} before its {}",
+                describe(cell, c),
+                cell.robots[d.robot].name,
+                d.duration,
+                Activity::Move {
+                    from: d.nodes.0,
+                    to: d.nodes.1
+                }
+                .describe(cell, d.robot)
+            ),
+            (Some(c), None) => format!("{}; not fixed", describe(cell, c)),
+        };
+        let _ = writeln!(out, "round {}: makespan {:.3}, {what}", k + 1, it.makespan);
+    }
+    if rounds.is_empty() {
+        let verdict = final_collision.map_or_else(
+            || "collision-free".to_owned(),
+            |c| format!("COLLISION: {}", describe(cell, c)),
+        );
+        let _ = writeln!(out, "{verdict}");
+    }
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    let _ = writeln!(
+        out,
+        "time: planning {:.1} ms, graph {:.1} ms, sequencing {:.1} ms, scheduling {:.1} ms, checking {:.1} ms",
+        ms(times.planning),
+        ms(times.graph),
+        ms(times.sequencing),
+        ms(times.scheduling),
+        ms(times.checking)
+    );
+    out
+}

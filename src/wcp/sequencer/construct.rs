@@ -1,0 +1,117 @@
+//! Cheapest insertion, for the first plan of a restart and to recreate a
+//! plan after part of it was ruined.
+
+use rand::seq::SliceRandom;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+use super::model::Model;
+use super::plan::{Move, Obj, Plan, Scratch};
+
+/// The insertion of unassigned task `t` that gives the best objective
+/// (first one found on ties: robots, then positions, in increasing order).
+fn best_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -> Move {
+    let x = t + 1;
+    let mut best = (Obj::WORST, None);
+    for &r in &model.capable_robots[t] {
+        let route = &plan.routes[r];
+        for gap in 0..route.len() - 1 {
+            let (a, b) = (route[gap], route[gap + 1]);
+            let added = model.c(r, a, x) + model.dn[x] + model.c(r, x, b) - model.c(r, a, b);
+            let mv = Move::Insert { t, r, gap };
+            let times = [(r, plan.time[r] + added)];
+            if let Some(obj) = plan.evaluate(model, &mv, &times, &best.0, scratch) {
+                best = (obj, Some(mv));
+            }
+        }
+    }
+    best.1.expect("every task has a capable robot")
+}
+
+/// Inserts the tasks of `order`, one after the other, where they cost least.
+pub(super) fn insert_all(model: &Model, plan: &mut Plan, order: &[usize], scratch: &mut Scratch) {
+    for &t in order {
+        let mv = best_insertion(model, plan, t, scratch);
+        plan.apply(model, &mv, scratch);
+    }
+}
+
+/// The order of the first plan of restart `k`: the most constrained and
+/// longest tasks first for restart 0, a random order for the others.
+pub(super) fn initial_order(model: &Model, k: usize, rng: &mut ChaCha8Rng) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..model.tasks).collect();
+    if k == 0 {
+        order.sort_by(|&a, &b| {
+            let key = |t: usize| model.capable_robots[t].len();
+            key(a)
+                .cmp(&key(b))
+                .then(model.dn[b + 1].total_cmp(&model.dn[a + 1]))
+                .then(a.cmp(&b))
+        });
+    } else {
+        order.shuffle(rng);
+    }
+    order
+}
+
+/// Removes a random handful of tasks and inserts them again in a random
+/// order. The tasks are picked at random, from a longest route, or close
+/// to a random task, so that both balance and geometry get shaken.
+pub(super) fn ruin_recreate(
+    model: &Model,
+    plan: &mut Plan,
+    rng: &mut ChaCha8Rng,
+    scratch: &mut Scratch,
+) {
+    let n = model.tasks;
+    if n == 0 {
+        return;
+    }
+    // At least 20 (or all): smaller ruins keep falling back into the same
+    // local optimum on small instances.
+    let most = (n / 6).clamp(20, 30).min(n);
+    let q = rng.random_range(1..=most);
+    let mut picked: Vec<usize> = match rng.random_range(0..3) {
+        0 => {
+            let mut all: Vec<usize> = (0..n).collect();
+            all.partial_shuffle(rng, q);
+            all.truncate(q);
+            all
+        }
+        1 => {
+            let route = &plan.routes[plan.critical()];
+            let mut tasks: Vec<usize> = route[1..route.len() - 1].iter().map(|v| v - 1).collect();
+            tasks.shuffle(rng);
+            tasks.truncate(q);
+            tasks
+        }
+        _ => related(model, rng.random_range(0..n), q),
+    };
+    if picked.is_empty() {
+        picked.push(rng.random_range(0..n));
+    }
+    for &t in &picked {
+        let (r, i) = plan.pos[t];
+        plan.apply(model, &Move::Remove { r, i }, scratch);
+    }
+    picked.shuffle(rng);
+    insert_all(model, plan, &picked, scratch);
+}
+
+/// `seed` and the `q - 1` tasks closest to it (round trip, fastest robot
+/// able to do both; ties by index).
+fn related(model: &Model, seed: usize, q: usize) -> Vec<usize> {
+    let x = seed + 1;
+    let mut near: Vec<(f64, usize)> = (0..model.tasks)
+        .map(|t| {
+            let d = model.capable_robots[t]
+                .iter()
+                .filter(|&&r| model.can(r, seed))
+                .map(|&r| model.c(r, x, t + 1) + model.c(r, t + 1, x))
+                .fold(f64::INFINITY, f64::min);
+            (if t == seed { -1.0 } else { d }, t)
+        })
+        .collect();
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    near.into_iter().take(q).map(|(_, t)| t).collect()
+}

@@ -1,0 +1,386 @@
+//! A plan under construction or search: routes, their costs, and the moves
+//! that change them.
+
+use super::model::Model;
+
+/// Relative tolerance of every comparison: rounding never makes a move look
+/// like an improvement, so the search cannot cycle.
+const EPS: f64 = 1e-12;
+
+/// `a` is smaller than `b` by more than rounding.
+#[inline]
+fn less(a: f64, b: f64) -> bool {
+    a < b - EPS * b.abs()
+}
+
+/// The objective, compared lexicographically.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Obj {
+    pub viol: usize,
+    pub makespan: f64,
+    pub total: f64,
+}
+
+impl Obj {
+    /// Worse than any plan.
+    pub const WORST: Obj = Obj {
+        viol: usize::MAX,
+        makespan: f64::MAX,
+        total: f64::MAX,
+    };
+
+    pub fn better(&self, o: &Obj) -> bool {
+        if self.viol != o.viol {
+            return self.viol < o.viol;
+        }
+        if less(self.makespan, o.makespan) {
+            return true;
+        }
+        !less(o.makespan, self.makespan) && less(self.total, o.total)
+    }
+}
+
+/// A change of one or two routes. Positions index node lists, which hold
+/// home at both ends: the tasks of a route sit at `1..len - 1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Move {
+    /// Insert unassigned task `t` into robot `r` after position `gap`.
+    Insert { t: usize, r: usize, gap: usize },
+    /// Take the task at position `i` of robot `r` out (it becomes unassigned).
+    Remove { r: usize, i: usize },
+    /// Cut `len` tasks from position `i` of `r1`, insert them (reversed if
+    /// `rev`) after position `gap` of `r2` as it is once they are cut.
+    Shift {
+        r1: usize,
+        i: usize,
+        len: usize,
+        r2: usize,
+        gap: usize,
+        rev: bool,
+    },
+    /// Exchange position `i` of `r1` with position `j` of `r2`.
+    Swap {
+        r1: usize,
+        i: usize,
+        r2: usize,
+        j: usize,
+    },
+    /// Reverse positions `i..=j` of robot `r`.
+    Reverse { r: usize, i: usize, j: usize },
+}
+
+/// Reusable buffers, so that evaluating a move allocates nothing.
+#[derive(Default)]
+pub(super) struct Scratch {
+    a: Vec<usize>,
+    b: Vec<usize>,
+    changes: Vec<(usize, usize, i32)>,
+    ids: Vec<usize>,
+}
+
+/// Marks a task that no route holds.
+const NONE: (usize, usize) = (usize::MAX, usize::MAX);
+
+#[derive(Clone, Debug)]
+pub(super) struct Plan {
+    /// Per robot, its nodes from home back to home.
+    pub routes: Vec<Vec<usize>>,
+    /// Per robot, its (penalised) route time.
+    pub time: Vec<f64>,
+    /// Per task, (robot, position), or `NONE`.
+    pub pos: Vec<(usize, usize)>,
+    pub total: f64,
+    /// The three longest routes as (time, robot), for the makespan without some robots.
+    top: [(f64, usize); 3],
+    /// With conflicts: `[r * steps + s]`, how often robot r's route uses step s.
+    used: Vec<u8>,
+    pub viol: usize,
+    /// Per robot, the violated conflicts that name it.
+    involved: Vec<usize>,
+}
+
+impl Plan {
+    pub fn empty(model: &Model) -> Plan {
+        let mut plan = Plan {
+            routes: vec![vec![0, 0]; model.robots],
+            time: vec![0.0; model.robots],
+            pos: vec![NONE; model.tasks],
+            total: 0.0,
+            top: [(0.0, usize::MAX); 3],
+            used: Vec::new(),
+            viol: 0,
+            involved: vec![0; model.robots],
+        };
+        if let Some(ci) = &model.conflicts {
+            plan.used = vec![0; model.robots * ci.steps];
+            for r in 0..model.robots {
+                plan.count_steps(model, r, 1);
+            }
+        }
+        plan.summarise(model);
+        plan
+    }
+
+    pub fn from_sequences(model: &Model, seqs: &[Vec<usize>]) -> Plan {
+        let mut plan = Plan::empty(model);
+        for (r, seq) in seqs.iter().enumerate() {
+            plan.count_steps(model, r, -1);
+            plan.routes[r] = std::iter::once(0)
+                .chain(seq.iter().map(|t| t + 1))
+                .chain(std::iter::once(0))
+                .collect();
+            plan.count_steps(model, r, 1);
+            plan.refresh(model, r);
+        }
+        plan.summarise(model);
+        plan
+    }
+
+    pub fn sequences(&self) -> Vec<Vec<usize>> {
+        self.routes
+            .iter()
+            .map(|nodes| nodes[1..nodes.len() - 1].iter().map(|v| v - 1).collect())
+            .collect()
+    }
+
+    pub fn obj(&self) -> Obj {
+        Obj {
+            viol: self.viol,
+            makespan: self.top[0].0,
+            total: self.total,
+        }
+    }
+
+    /// Index of a longest route.
+    pub fn critical(&self) -> usize {
+        self.top[0].1
+    }
+
+    /// Longest route time among the robots other than `a` and `b`.
+    #[inline]
+    pub fn max_excluding(&self, a: usize, b: usize) -> f64 {
+        self.top
+            .iter()
+            .find(|&&(_, r)| r != a && r != b)
+            .map_or(0.0, |&(v, _)| v)
+    }
+
+    /// The objective once `mv` is made, given the new times of the robots
+    /// it touches, if it beats `bar`. The conflicts are counted only when
+    /// the move could win even if it repaired every violation of its robots.
+    #[inline]
+    pub fn evaluate(
+        &self,
+        model: &Model,
+        mv: &Move,
+        times: &[(usize, f64)],
+        bar: &Obj,
+        scratch: &mut Scratch,
+    ) -> Option<Obj> {
+        let (a, b) = (times[0].0, times[times.len() - 1].0);
+        let mut makespan = self.max_excluding(a, b);
+        let mut total = self.total;
+        for &(r, t) in times {
+            makespan = makespan.max(t);
+            total += t - self.time[r];
+        }
+        let mut obj = Obj {
+            viol: self.viol,
+            makespan,
+            total,
+        };
+        let quiet = match &model.conflicts {
+            None => true,
+            Some(ci) => !times.iter().any(|&(r, _)| ci.hot_robot[r]),
+        };
+        if quiet {
+            return obj.better(bar).then_some(obj);
+        }
+        let involved = self.involved[a] + if b == a { 0 } else { self.involved[b] };
+        obj.viol = self.viol.saturating_sub(involved);
+        if !obj.better(bar) {
+            return None;
+        }
+        obj.viol = self.viol_after(model, mv, scratch);
+        obj.better(bar).then_some(obj)
+    }
+
+    pub fn apply(&mut self, model: &Model, mv: &Move, scratch: &mut Scratch) {
+        if let Move::Remove { r, i } = *mv {
+            let t = self.routes[r][i] - 1;
+            self.pos[t] = NONE;
+        }
+        let (r1, r2) = self.rebuild(mv, &mut scratch.a, &mut scratch.b);
+        let touched = [(r1, &mut scratch.a), (r2.unwrap_or(r1), &mut scratch.b)];
+        for (k, (r, buf)) in touched.into_iter().enumerate() {
+            if k == 1 && r2.is_none() {
+                break;
+            }
+            self.count_steps(model, r, -1);
+            std::mem::swap(&mut self.routes[r], buf);
+            self.count_steps(model, r, 1);
+            self.refresh(model, r);
+        }
+        self.summarise(model);
+    }
+
+    /// Writes the routes `mv` produces into `a` (and `b` when it touches
+    /// two robots); returns the robots.
+    fn rebuild(&self, mv: &Move, a: &mut Vec<usize>, b: &mut Vec<usize>) -> (usize, Option<usize>) {
+        let load = |buf: &mut Vec<usize>, r: usize| {
+            buf.clear();
+            buf.extend_from_slice(&self.routes[r]);
+        };
+        match *mv {
+            Move::Insert { t, r, gap } => {
+                load(a, r);
+                a.insert(gap + 1, t + 1);
+                (r, None)
+            }
+            Move::Remove { r, i } => {
+                load(a, r);
+                a.remove(i);
+                (r, None)
+            }
+            Move::Shift {
+                r1,
+                i,
+                len,
+                r2,
+                gap,
+                rev,
+            } => {
+                load(a, r1);
+                a.drain(i..i + len);
+                let target = if r1 == r2 {
+                    &mut *a
+                } else {
+                    load(b, r2);
+                    &mut *b
+                };
+                let seg = self.routes[r1][i..i + len].iter().copied();
+                if rev {
+                    target.splice(gap + 1..gap + 1, seg.rev());
+                } else {
+                    target.splice(gap + 1..gap + 1, seg);
+                }
+                (r1, (r1 != r2).then_some(r2))
+            }
+            Move::Swap { r1, i, r2, j } => {
+                load(a, r1);
+                if r1 == r2 {
+                    a.swap(i, j);
+                    (r1, None)
+                } else {
+                    load(b, r2);
+                    std::mem::swap(&mut a[i], &mut b[j]);
+                    (r1, Some(r2))
+                }
+            }
+            Move::Reverse { r, i, j } => {
+                load(a, r);
+                a[i..=j].reverse();
+                (r, None)
+            }
+        }
+    }
+
+    /// Violated conflicts once `mv` is made: only conflicts naming a step
+    /// that some touched route gains or loses can change.
+    pub fn viol_after(&self, model: &Model, mv: &Move, scratch: &mut Scratch) -> usize {
+        let Some(ci) = &model.conflicts else {
+            return 0;
+        };
+        let (r1, r2) = self.rebuild(mv, &mut scratch.a, &mut scratch.b);
+        let changes = &mut scratch.changes;
+        changes.clear();
+        let touched = [(r1, &scratch.a), (r2.unwrap_or(r1), &scratch.b)];
+        for (r, new) in touched.into_iter().take(1 + r2.is_some() as usize) {
+            if !ci.hot_robot[r] {
+                continue;
+            }
+            model.for_each_step(&self.routes[r], |s| {
+                if ci.hot(r, s) {
+                    changes.push((r, s, -1));
+                }
+            });
+            model.for_each_step(new, |s| {
+                if ci.hot(r, s) {
+                    changes.push((r, s, 1));
+                }
+            });
+        }
+        ci.violations_after(&self.used, self.viol, changes, &mut scratch.ids)
+    }
+
+    /// Adds `sign` to the use counts of robot `r`'s steps.
+    fn count_steps(&mut self, model: &Model, r: usize, sign: i8) {
+        let Some(ci) = &model.conflicts else {
+            return;
+        };
+        let used = &mut self.used;
+        model.for_each_step(&self.routes[r], |s| {
+            let u = &mut used[r * ci.steps + s];
+            *u = u.wrapping_add_signed(sign);
+        });
+    }
+
+    /// Recomputes robot `r`'s time and the positions of its tasks.
+    fn refresh(&mut self, model: &Model, r: usize) {
+        self.time[r] = model.route_time(r, &self.routes[r]);
+        let nodes = &self.routes[r];
+        for (i, &v) in nodes.iter().enumerate().take(nodes.len() - 1).skip(1) {
+            self.pos[v - 1] = (r, i);
+        }
+    }
+
+    /// Recomputes the total, the longest routes and the violations from scratch.
+    fn summarise(&mut self, model: &Model) {
+        self.total = self.time.iter().sum();
+        let mut top = [(0.0, usize::MAX); 3];
+        for (r, &t) in self.time.iter().enumerate() {
+            if let Some(k) = top.iter().position(|&(v, q)| q == usize::MAX || t > v) {
+                top[k..].rotate_right(1);
+                top[k] = (t, r);
+            }
+        }
+        self.top = top;
+        if let Some(ci) = &model.conflicts {
+            let used = |(r, s): (usize, usize)| self.used[r * ci.steps + s] > 0;
+            self.viol = 0;
+            self.involved.fill(0);
+            for [x, y] in ci.sides.iter().filter(|[x, y]| used(*x) && used(*y)) {
+                self.viol += 1;
+                self.involved[x.0] += 1;
+                if y.0 != x.0 {
+                    self.involved[y.0] += 1;
+                }
+            }
+        }
+    }
+
+    /// Checks the cached data against a recomputation (tests only).
+    #[cfg(test)]
+    pub fn assert_consistent(&self, model: &Model) {
+        let fresh = Plan::from_sequences(model, &self.sequences());
+        assert_eq!(self.routes, fresh.routes);
+        assert_eq!(self.time, fresh.time);
+        assert_eq!(self.used, fresh.used);
+        assert_eq!(self.obj(), fresh.obj());
+        for (t, &p) in self.pos.iter().enumerate() {
+            assert!(p == NONE || self.routes[p.0][p.1] == t + 1);
+        }
+    }
+
+    /// The times of the robots `mv` touches, recomputed from the rebuilt routes (tests only).
+    #[cfg(test)]
+    pub fn times_after(&self, model: &Model, mv: &Move) -> Vec<(usize, f64)> {
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let (r1, r2) = self.rebuild(mv, &mut a, &mut b);
+        let mut out = vec![(r1, model.route_time(r1, &a))];
+        if let Some(r2) = r2 {
+            out.push((r2, model.route_time(r2, &b)));
+        }
+        out
+    }
+}

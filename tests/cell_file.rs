@@ -1,0 +1,202 @@
+//! Cell files: every refusal names the file, the body and the field.
+
+use std::path::Path;
+use workcell::cell::{parse_cell, parse_sequences, Cell, InputError};
+
+const FILE: &str = "cell.json";
+
+fn cell(robots: &str, obstacles: &str, tasks: &str) -> String {
+    format!(
+        r#"{{"delta": 0.01, "robots": [{robots}], "obstacles": [{obstacles}], "tasks": [{tasks}]}}"#
+    )
+}
+
+fn robot(name: &str, home: &str) -> String {
+    format!(
+        r#"{{"name": "{name}", "shape": [[-0.3,-0.3],[0.3,-0.3],[0.3,0.3],[-0.3,0.3]], "home": {home},
+            "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5}}"#
+    )
+}
+
+const WALL: &str = r#"{"name": "wall", "shape": [[2,-1],[3,-1],[3,1],[2,1]]}"#;
+
+fn task(name: &str, at: &str, extra: &str) -> String {
+    format!(r#"{{"name": "{name}", "at": {at}, "duration": 1.0{extra}}}"#)
+}
+
+fn refused(text: &str) -> InputError {
+    parse_cell(text, Path::new(FILE)).expect_err("the cell must be refused")
+}
+
+fn ok(text: &str) -> Cell {
+    parse_cell(text, Path::new(FILE))
+        .expect("a valid cell")
+        .cell
+}
+
+#[test]
+fn a_valid_cell_reads_with_defaults() {
+    let c = ok(&cell(
+        &[robot("R1", "[0, 0]"), robot("R2", "[5, 0, 1.0]")].join(","),
+        WALL,
+        &[
+            task("t1", "[1, 2]", ""),
+            task("t2", "[4, 2, 0.5]", r#", "robots": ["R2"]"#),
+        ]
+        .join(","),
+    ));
+    assert_eq!(c.robots[0].home.theta, 0.0);
+    assert_eq!(c.robots[1].home.theta, 1.0);
+    assert_eq!(c.tasks[0].robots, vec![0, 1], "default: every robot");
+    assert_eq!(c.tasks[1].robots, vec![1]);
+    assert_eq!(c.tasks[1].at.theta, 0.5);
+}
+
+#[test]
+fn duplicate_names_are_refused_across_kinds() {
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        WALL,
+        &task("R1", "[1, 2]", ""),
+    ));
+    assert_eq!(e.field, "tasks[0].name");
+    assert_eq!(e.body.as_deref(), Some("R1"));
+    assert!(e.reason.contains("robots[0]"), "{e}");
+    let e = refused(&cell(
+        &[robot("R1", "[0, 0]"), robot("R1", "[5, 5]")].join(","),
+        "",
+        "",
+    ));
+    assert_eq!(e.field, "robots[1].name");
+}
+
+#[test]
+fn non_positive_limits_are_refused() {
+    for field in ["max_speed", "max_accel", "max_turn_rate"] {
+        for bad in ["0", "-1", "1e400"] {
+            let text = cell(&robot("R1", "[0, 0]"), "", "").replace(
+                &format!(r#""{field}": "#),
+                &format!(r#""{field}": {bad}, "x{field}": "#),
+            );
+            let e = parse_cell(&text, Path::new(FILE));
+            let e = match e {
+                Err(e) => e,
+                Ok(_) => panic!("{field} = {bad} accepted"),
+            };
+            assert_eq!(e.body.as_deref(), Some("R1"), "{e}");
+            assert_eq!(e.field, format!("robots[0].{field}"), "{e}");
+        }
+    }
+}
+
+#[test]
+fn a_home_or_task_inside_an_obstacle_is_refused() {
+    let e = refused(&cell(&robot("R1", "[2.5, 0]"), WALL, ""));
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("robots[0].home", Some("R1"))
+    );
+    assert!(e.reason.contains("wall"), "{e}");
+    // Touching the wall within delta is a collision at home too.
+    let e = refused(&cell(&robot("R1", "[1.695, 0]"), WALL, ""));
+    assert_eq!(e.field, "robots[0].home");
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        WALL,
+        &task("t1", "[2.5, 0.5]", ""),
+    ));
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("tasks[0].at", Some("t1"))
+    );
+    assert!(e.reason.contains("inside obstacle \"wall\""), "{e}");
+}
+
+#[test]
+fn a_task_no_robot_may_do_is_refused() {
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &task("t1", "[1, 2]", r#", "robots": []"#),
+    ));
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("tasks[0].robots", Some("t1"))
+    );
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &task("t1", "[1, 2]", r#", "robots": ["R7"]"#),
+    ));
+    assert_eq!(e.field, "tasks[0].robots[0]");
+    assert!(e.reason.contains("R7"), "{e}");
+}
+
+#[test]
+fn malformed_fields_name_their_path() {
+    let e = refused(&cell(&robot("R1", "[0]"), "", ""));
+    assert_eq!(e.field, "robots[0].home");
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &task("t1", "[1, 2]", "").replace("1.0", "-2"),
+    ));
+    assert_eq!(e.field, "tasks[0].duration");
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &task("t1", "[1, 2]", "").replace("\"at\"", "\"where\""),
+    ));
+    assert_eq!(e.body.as_deref(), Some("t1"), "{e}");
+    let e = refused(&cell("", "", ""));
+    assert_eq!(e.field, "robots");
+    let e = refused(&cell(&robot("R1", "[1e300, 0]"), "", ""));
+    assert_eq!(e.field, "robots[0].home");
+    assert!(
+        e.to_string()
+            .starts_with("cell.json: body \"R1\", field `robots[0].home`:"),
+        "{e}"
+    );
+}
+
+#[test]
+fn sequences_are_checked_against_the_cell() {
+    let c = ok(&cell(
+        &[robot("R1", "[0, 0]"), robot("R2", "[5, 0]")].join(","),
+        "",
+        &[
+            task("t1", "[1, 2]", ""),
+            task("t2", "[4, 2]", r#", "robots": ["R2"]"#),
+        ]
+        .join(","),
+    ));
+    let file = Path::new("seq.json");
+    let routes = parse_sequences(r#"{"R2": ["t2", "t1"]}"#, file, &c).unwrap();
+    assert_eq!(routes, vec![vec![], vec![1, 0]]);
+    let routes = parse_sequences(
+        r#"{"makespan": 3, "sequences": {"R1": ["t1"], "R2": ["t2"]}}"#,
+        file,
+        &c,
+    )
+    .unwrap();
+    assert_eq!(routes, vec![vec![0], vec![1]]);
+    let cases = [
+        (r#"{"R1": ["t1", "t2"]}"#, "R1[1]", "not allowed"),
+        (
+            r#"{"R1": ["t1"], "R2": ["t1", "t2"]}"#,
+            "R2[0]",
+            "already done",
+        ),
+        (r#"{"R1": ["t1"]}"#, "", "t2"),
+        (r#"{"R9": []}"#, "R9", "no robot"),
+        (r#"{"R1": ["t3"]}"#, "R1[0]", "no task"),
+        (r#"{"R1": "t1"}"#, "R1", "list"),
+        (r#"[1]"#, "", "object"),
+    ];
+    for (text, field, reason) in cases {
+        let e = parse_sequences(text, file, &c).expect_err(text);
+        assert_eq!(e.field, field, "{text}: {e}");
+        assert!(e.reason.contains(reason), "{text}: {e}");
+        assert_eq!(e.file, file);
+    }
+}
