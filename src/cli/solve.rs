@@ -5,7 +5,9 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use workcell::cell::{load_cell, load_sequences, scene_document, Cell, InputError};
-use workcell::wcp::report::{collision_json, rounds_json, schedule_json, summary, ResultJson};
+use workcell::wcp::report::{
+    collision_json, rounds_json, schedule_json, sequences_json, summary, ResultJson,
+};
 use workcell::wcp::{self, Collision, Iteration, Progress, Schedule, SolveOptions};
 
 /// Output options shared by `solve` and `evaluate`.
@@ -104,6 +106,7 @@ pub fn run_solve(
             collision_free: solved.collision_free,
             sequences,
             iterations: solved.iterations.len(),
+            blind_sequences: Some(sequences_json(&cell, &solved.blind_routes)),
             blind_makespan: Some(solved.blind_makespan),
             blind_optimal: Some(solved.blind_optimal),
             first_collision: final_collision.map(|c| collision_json(&cell, c)),
@@ -168,6 +171,7 @@ pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<Exit
             collision_free: evaluated.collision_free,
             sequences,
             iterations: 1,
+            blind_sequences: None,
             blind_makespan: None,
             blind_optimal: None,
             first_collision: evaluated

@@ -109,7 +109,9 @@ pub struct Solved {
     pub collision_free: bool,
     /// Every round, in order; the last one checked the final schedule.
     pub iterations: Vec<Iteration>,
-    /// Makespan of the collision-blind best schedule (the first round's).
+    /// The collision-blind best sequences (the first round's).
+    pub blind_routes: Vec<Vec<usize>>,
+    /// Makespan of the collision-blind best schedule.
     pub blind_makespan: f64,
     /// Whether the sequencer proved that one optimal.
     pub blind_optimal: bool,
@@ -201,6 +203,7 @@ pub fn solve(
                 schedule: schedule.clone(),
                 report: report.clone(),
                 iterations,
+                blind_routes: blind.sequences.clone(),
                 blind_makespan: blind.makespan,
                 blind_optimal: blind.optimal,
                 failure,

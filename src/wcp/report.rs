@@ -22,6 +22,12 @@ pub struct ResultJson<'a> {
     pub sequences: Vec<(&'a str, Vec<&'a str>)>,
     /// Rounds of sequencing, checking and feedback (1 for `evaluate`).
     pub iterations: usize,
+    /// The collision-blind best sequences, before any feedback (solve only).
+    #[serde(
+        serialize_with = "ordered_optional_map",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub blind_sequences: Option<Vec<(&'a str, Vec<&'a str>)>>,
     /// Makespan of the collision-blind best schedule (solve only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub blind_makespan: Option<f64>,
@@ -131,6 +137,29 @@ fn ordered_map<S: Serializer, V: Serialize>(pairs: &[(&str, V)], s: S) -> Result
     map.end()
 }
 
+#[allow(clippy::type_complexity)]
+fn ordered_optional_map<S: Serializer, V: Serialize>(
+    pairs: &Option<Vec<(&str, V)>>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    match pairs {
+        Some(pairs) => ordered_map(pairs, s),
+        None => s.serialize_none(),
+    }
+}
+
+/// Each robot's task names, robots in the cell's order.
+pub fn sequences_json<'a>(cell: &'a Cell, routes: &[Vec<usize>]) -> Vec<(&'a str, Vec<&'a str>)> {
+    cell.robots
+        .iter()
+        .zip(routes)
+        .map(|(r, route)| {
+            let names = route.iter().map(|&t| cell.tasks[t].name.as_str()).collect();
+            (r.name.as_str(), names)
+        })
+        .collect()
+}
+
 /// A collision in the JSON's terms.
 pub fn collision_json(cell: &Cell, c: &Collision) -> CollisionJson {
     let b = match (c.robots.1, c.segments.1) {
@@ -183,20 +212,8 @@ pub fn schedule_json<'a>(
     Vec<(&'a str, Vec<&'a str>)>,
     Vec<(&'a str, Vec<SegmentJson<'a>>)>,
 ) {
-    let sequences = cell
-        .robots
-        .iter()
-        .zip(&schedule.robots)
-        .map(|(r, s)| {
-            (
-                r.name.as_str(),
-                s.route
-                    .iter()
-                    .map(|&t| cell.tasks[t].name.as_str())
-                    .collect(),
-            )
-        })
-        .collect();
+    let routes: Vec<Vec<usize>> = schedule.robots.iter().map(|s| s.route.clone()).collect();
+    let sequences = sequences_json(cell, &routes);
     let timeline = schedule
         .robots
         .iter()

@@ -1,0 +1,224 @@
+//! `workcell solve` and `workcell evaluate` as a user meets them: exit statuses, the
+//! contract's JSON, the exports, and errors that name the file, the body and the field.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn workcell(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_workcell"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn shipped(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cells")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn temp(test: &str, name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("workcell-solve-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn json(o: &Output) -> Value {
+    serde_json::from_slice(&o.stdout).expect("stdout is JSON")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+#[test]
+fn solve_prints_the_contract_json_and_writes_every_export() {
+    let (scene, graph, svg) = (
+        temp("exports", "scene.json"),
+        temp("exports", "graph.json"),
+        temp("exports", "cell.svg"),
+    );
+    let out = workcell(&[
+        "solve",
+        &shipped("paper-cell.json"),
+        "--json",
+        "--export-scene",
+        scene.to_str().unwrap(),
+        "--export-graph",
+        graph.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        out.stderr.is_empty(),
+        "no progress bar with --json: {}",
+        text(&out.stderr)
+    );
+    let result = json(&out);
+    assert_eq!(result["collision_free"], true);
+    assert!(result["makespan"].as_f64().unwrap() > 0.0);
+    assert!(result["iterations"].as_u64().unwrap() >= 1);
+    let sequences = result["sequences"].as_object().unwrap();
+    let tasks: usize = sequences
+        .values()
+        .map(|s| s.as_array().unwrap().len())
+        .sum();
+    assert_eq!((sequences.len(), tasks), (2, 12));
+
+    // The exported scene is what `check` certifies, up to the makespan.
+    let checked = workcell(&["check", scene.to_str().unwrap(), "--json"]);
+    assert_eq!(checked.status.code(), Some(0), "{}", text(&checked.stdout));
+    let report = json(&checked);
+    assert_eq!(report["safe_until"], result["makespan"]);
+
+    let graph: Value = serde_json::from_str(&std::fs::read_to_string(&graph).unwrap()).unwrap();
+    let nodes = graph["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), 14);
+    assert_eq!(nodes.iter().filter(|n| n["kind"] == "home").count(), 2);
+    let arcs = graph["arcs"].as_array().unwrap();
+    // Both robots may do all 12 tasks: 13·12 ordered pairs each.
+    assert_eq!(arcs.len(), 2 * 13 * 12);
+    assert!(arcs.iter().all(|a| a["travel_time"].as_f64().unwrap() > 0.0
+        && a["robot"].is_string()
+        && a["from"].is_string()
+        && a["to"].is_string()));
+
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(picture.starts_with("<svg") && picture.contains("weld-12"));
+}
+
+#[test]
+fn solve_reports_the_feedback_and_evaluate_rejects_the_blind_schedule() {
+    let cell = shipped("feedback-cell.json");
+    let out = workcell(&["solve", &cell, "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let result = json(&out);
+    let rounds = result["feedback"].as_array().unwrap();
+    assert!(rounds[0]["collision"].is_object());
+    assert!(rounds.iter().any(|r| r["remedy"] == "resequence"));
+    assert_eq!(rounds.len() as u64, result["iterations"].as_u64().unwrap());
+
+    // The blind sequences collide: evaluate says so with exit 1 and names the pair.
+    let blind = temp("feedback", "blind.json");
+    std::fs::write(&blind, result["blind_sequences"].to_string()).unwrap();
+    let out = workcell(&["evaluate", &cell, blind.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stdout));
+    let verdict = json(&out);
+    assert_eq!(verdict["collision_free"], false);
+    let first = &rounds[0]["collision"];
+    assert_eq!(verdict["first_collision"]["bodies"], first["bodies"]);
+    assert_eq!(verdict["first_collision"]["time"], first["time"]);
+    assert_eq!(
+        verdict["first_collision"]["activities"],
+        first["activities"]
+    );
+
+    // The whole solve result is accepted as a sequences file and reproduces the makespan.
+    let whole = temp("feedback", "result.json");
+    std::fs::write(&whole, workcell(&["solve", &cell, "--json"]).stdout).unwrap();
+    let out = workcell(&["evaluate", &cell, whole.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    assert_eq!(json(&out)["makespan"], result["makespan"]);
+    let human = workcell(&["evaluate", &cell, whole.to_str().unwrap()]);
+    assert!(
+        text(&human.stdout).contains("collision-free"),
+        "{}",
+        text(&human.stdout)
+    );
+}
+
+#[test]
+fn solve_without_enough_iterations_exits_1_with_the_reason() {
+    let out = workcell(&[
+        "solve",
+        &shipped("feedback-cell.json"),
+        "--max-iterations",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("NO collision-free schedule"), "{stdout}");
+    assert!(stdout.contains("R1") && stdout.contains("R2"), "{stdout}");
+}
+
+#[test]
+fn the_same_seed_gives_the_same_answer() {
+    let cell = shipped("four-robots-cell.json");
+    let strip = |o: Output| {
+        let mut v = json(&o);
+        v.as_object_mut().unwrap().remove("stages_ms");
+        v
+    };
+    let a = strip(workcell(&["solve", &cell, "--json", "--seed", "3"]));
+    let b = strip(workcell(&["solve", &cell, "--json", "--seed", "3"]));
+    assert_eq!(a, b);
+}
+
+#[test]
+fn the_human_summary_lists_robots_rounds_and_stages() {
+    let out = workcell(&["solve", &shipped("paper-cell.json")]);
+    assert_eq!(out.status.code(), Some(0));
+    let s = text(&out.stdout);
+    for needle in [
+        "collision-free schedule",
+        "makespan",
+        "R1 ",
+        "R2 ",
+        "round 1",
+        "planning",
+        "checking",
+    ] {
+        assert!(s.contains(needle), "`{needle}` missing from:\n{s}");
+    }
+}
+
+#[test]
+fn bad_cells_and_sequences_exit_2_naming_file_body_and_field() {
+    let bad = temp("bad", "cell.json");
+    std::fs::write(
+        &bad,
+        r#"{"robots": [{"name": "R1", "shape": [[0,0],[1,0],[0,1]], "home": [0, 0],
+            "max_speed": 0, "max_accel": 1, "max_turn_rate": 1}], "tasks": []}"#,
+    )
+    .unwrap();
+    let out = workcell(&["solve", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("cell.json") && err.contains("\"R1\"") && err.contains("robots[0].max_speed"),
+        "{err}"
+    );
+
+    let out = workcell(&["solve", "no/such/cell.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("no/such/cell.json"));
+
+    let seq = temp("bad", "seq.json");
+    std::fs::write(&seq, r#"{"R1": ["weld-1", "weld-1"]}"#).unwrap();
+    let out = workcell(&[
+        "evaluate",
+        &shipped("paper-cell.json"),
+        seq.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("seq.json") && err.contains("R1[1]") && err.contains("weld-1"),
+        "{err}"
+    );
+
+    // An export that cannot be written: the result is still printed, then exit 2.
+    let out = workcell(&[
+        "solve",
+        &shipped("paper-cell.json"),
+        "--svg",
+        "/no/such/dir/x.svg",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stdout).contains("makespan"));
+    assert!(text(&out.stderr).contains("/no/such/dir/x.svg"));
+}
