@@ -10,6 +10,8 @@ fn scenes(dir: &Path) -> Vec<(String, workcell::collision::Scene)> {
         .unwrap()
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        // `*-cell.json` are cells for `solve`, not scenes.
+        .filter(|p| !p.to_string_lossy().ends_with("-cell.json"))
         .collect();
     files.sort();
     files

@@ -124,8 +124,9 @@ pub fn run_solve(
             Some(why) => format!("NO collision-free schedule: {why}"),
         };
         text += &format!(
-            " ({} rounds; collision-blind makespan {:.3}{})\n",
+            " ({} round{}; collision-blind makespan {:.3}{})\n",
             solved.iterations.len(),
+            if solved.iterations.len() == 1 { "" } else { "s" },
             solved.blind_makespan,
             if solved.blind_optimal {
                 ", proven optimal"

@@ -16,6 +16,14 @@ use std::fmt;
 pub enum MoveFailure {
     /// The planner found no obstacle-free path.
     Plan(PlanError),
+    /// An end of the move is too close to an obstacle for the planner's clearance, swept
+    /// over the move's rotation.
+    Blocked {
+        /// `"start"` or `"goal"`.
+        end: &'static str,
+        /// The obstacle.
+        obstacle: String,
+    },
     /// The checker found the planned move within δ of an obstacle (a planner defect, kept
     /// out of every schedule).
     Collides {
@@ -32,6 +40,11 @@ impl fmt::Display for MoveFailure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             MoveFailure::Plan(e) => write!(f, "{e}"),
+            MoveFailure::Blocked { end, obstacle } => write!(
+                f,
+                "at the {end} pose the robot, turning as the move requires, would come closer \
+                 than the planning clearance (delta + 2%) to obstacle \"{obstacle}\""
+            ),
             MoveFailure::Collides { time, obstacle } => write!(
                 f,
                 "the planned move comes within delta of obstacle \"{obstacle}\" at t = {time:.6} \

@@ -1,0 +1,74 @@
+//! `solve` stage by stage on the shipped cells: planning (every move planned and certified),
+//! graph (petgraph graph and the sequencer's instance), sequencing (collision-blind best
+//! schedule), checking (the final schedule, all pairs), and the whole solve.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::path::Path;
+use std::time::Duration;
+use workcell::cell::{load_cell, Cell};
+use workcell::collision::check;
+use workcell::wcp::{self, sequencer, MoveTable, SolveOptions, WcpGraph};
+
+const CELLS: [&str; 4] = [
+    "paper-cell",
+    "feedback-cell",
+    "four-robots-cell",
+    "hall-cell",
+];
+
+fn cell(name: &str) -> Cell {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cells")
+        .join(format!("{name}.json"));
+    load_cell(&path).unwrap().cell
+}
+
+fn stages(c: &mut Criterion) {
+    let opts = SolveOptions::default();
+    for name in CELLS {
+        let cell = cell(name);
+        let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+        let solved = wcp::solve(&cell, &prepared, &opts, &()).unwrap();
+        let scene = solved.schedule.scene(&cell);
+        let mut group = c.benchmark_group(format!("solve/{name}"));
+        if name == "hall-cell" {
+            group
+                .sample_size(10)
+                .measurement_time(Duration::from_secs(20));
+        }
+        group.bench_function("planning", |b| {
+            b.iter(|| MoveTable::build(&cell, &opts.planner, &|| {}).certified)
+        });
+        group.bench_function("graph", |b| {
+            b.iter(|| {
+                WcpGraph::new(&cell, &prepared.moves)
+                    .instance(&cell)
+                    .unwrap()
+                    .tasks
+            })
+        });
+        group.bench_function("sequencing", |b| {
+            b.iter(|| {
+                sequencer::solve(&prepared.instance, &[], &opts.sequencer)
+                    .unwrap()
+                    .makespan
+            })
+        });
+        group.bench_function("checking", |b| {
+            b.iter(|| check(&scene, &opts.check).collision)
+        });
+        group.bench_function("whole", |b| {
+            b.iter(|| {
+                let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+                wcp::solve(&cell, &prepared, &opts, &())
+                    .unwrap()
+                    .schedule
+                    .makespan
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, stages);
+criterion_main!(benches);
