@@ -90,7 +90,7 @@ fn non_positive_limits_are_refused() {
 }
 
 #[test]
-fn a_home_or_task_inside_an_obstacle_is_refused() {
+fn a_home_or_task_inside_an_obstacle_or_homes_touching_are_refused() {
     let e = refused(&cell(&robot("R1", "[2.5, 0]"), WALL, ""));
     assert_eq!(
         (e.field.as_str(), e.body.as_deref()),

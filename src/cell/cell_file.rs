@@ -272,6 +272,28 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
         }
     }
 
+    // Two robots touching at home collide before anything is scheduled: no sequence or
+    // wait can separate them.
+    for (k, r) in robots.iter().enumerate() {
+        let placed = Posed::new(&r.shape, r.home.pos.x, r.home.pos.y, r.home.theta);
+        for other in &robots[..k] {
+            let o = Posed::new(
+                &other.shape,
+                other.home.pos.x,
+                other.home.pos.y,
+                other.home.theta,
+            );
+            let d = closest_features(&placed, &o, None, &WalkTolerances::default()).distance;
+            if d < delta {
+                let reason = format!(
+                    "at home the robot is {d:.3e} from robot \"{}\" at its home, closer than delta = {delta}",
+                    other.name
+                );
+                return Err(err(&r.name, format!("robots[{k}].home"), reason));
+            }
+        }
+    }
+
     let robot_index: HashMap<&str, usize> = robots
         .iter()
         .enumerate()

@@ -126,7 +126,11 @@ pub fn run_solve(
         text += &format!(
             " ({} round{}; collision-blind makespan {:.3}{})\n",
             solved.iterations.len(),
-            if solved.iterations.len() == 1 { "" } else { "s" },
+            if solved.iterations.len() == 1 {
+                ""
+            } else {
+                "s"
+            },
             solved.blind_makespan,
             if solved.blind_optimal {
                 ", proven optimal"
