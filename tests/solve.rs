@@ -230,3 +230,38 @@ fn an_enclosed_task_is_an_input_error_naming_it() {
     );
     assert!(e.reason.contains("R1"), "{e}");
 }
+
+#[test]
+fn crossing_robots_with_forced_tasks_are_separated_by_a_delay() {
+    // Each robot may do only the task on the other's side: the straight moves cross at the
+    // same time, and no re-sequencing can avoid it.
+    let robot = |name: &str, x: f64| {
+        format!(
+            r#"{{"name": "{name}", "shape": [[-0.3,-0.3],[0.3,-0.3],[0.3,0.3],[-0.3,0.3]],
+                "home": [{x}, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1.5}}"#
+        )
+    };
+    let text = format!(
+        r#"{{"delta": 0.01, "robots": [{}, {}], "tasks": [
+            {{"name": "east", "at": [10, 3], "duration": 1, "robots": ["R1"]}},
+            {{"name": "west", "at": [0, 3], "duration": 1, "robots": ["R2"]}}]}}"#,
+        robot("R1", 0.0),
+        robot("R2", 10.0)
+    );
+    let cell = parse_cell(&text, Path::new("crossing.json")).unwrap().cell;
+    let solved = solve(&cell, 0);
+    assert!(
+        solved.iterations[0].collision.is_some(),
+        "the blind schedule collides"
+    );
+    assert!(solved
+        .iterations
+        .iter()
+        .any(|i| matches!(i.remedy, Some(Remedy::Delay(_)))));
+    assert!(solved.schedule.robots.iter().any(|r| r
+        .segments
+        .iter()
+        .any(|s| matches!(s.activity, Activity::Wait(_)))));
+    assert_valid_solution(&cell, &solved);
+    assert!(solved.schedule.makespan > solved.blind_makespan);
+}
