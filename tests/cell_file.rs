@@ -1,7 +1,7 @@
 //! Cell files: every refusal names the file, the body and the field.
 
 use std::path::Path;
-use workcell::cell::{parse_cell, parse_sequences, Cell, InputError};
+use workcell::cell::{parse_cell, parse_sequences, Cell, InputError, Wait};
 
 const FILE: &str = "cell.json";
 
@@ -172,14 +172,43 @@ fn sequences_are_checked_against_the_cell() {
     ));
     let file = Path::new("seq.json");
     let routes = parse_sequences(r#"{"R2": ["t2", "t1"]}"#, file, &c).unwrap();
-    assert_eq!(routes, vec![vec![], vec![1, 0]]);
+    assert_eq!(routes.routes, vec![vec![], vec![1, 0]]);
+    assert!(routes.waits.is_empty());
     let routes = parse_sequences(
-        r#"{"makespan": 3, "sequences": {"R1": ["t1"], "R2": ["t2"]}}"#,
+        r#"{"makespan": 3, "sequences": {"R1": ["t1"], "R2": ["t2"]},
+            "waits": [{"robot": "R2", "before_move": 1, "duration": 0.5}]}"#,
         file,
         &c,
     )
     .unwrap();
-    assert_eq!(routes, vec![vec![0], vec![1]]);
+    assert_eq!(routes.routes, vec![vec![0], vec![1]]);
+    assert_eq!(
+        routes.waits,
+        vec![Wait {
+            robot: 1,
+            before_move: 1,
+            duration: 0.5
+        }]
+    );
+    let wait =
+        |w: &str| format!(r#"{{"sequences": {{"R1": ["t1"], "R2": ["t2"]}}, "waits": [{w}]}}"#);
+    for (w, field) in [
+        (
+            r#"{"robot": "R3", "before_move": 0, "duration": 1}"#,
+            "waits[0].robot",
+        ),
+        (
+            r#"{"robot": "R1", "before_move": 2, "duration": 1}"#,
+            "waits[0].before_move",
+        ),
+        (
+            r#"{"robot": "R1", "before_move": 0, "duration": -1}"#,
+            "waits[0].duration",
+        ),
+    ] {
+        let e = parse_sequences(&wait(w), file, &c).expect_err(w);
+        assert_eq!(e.field, field, "{e}");
+    }
     let cases = [
         (r#"{"R1": ["t1", "t2"]}"#, "R1[1]", "not allowed"),
         (

@@ -134,9 +134,13 @@ fn the_feedback_cell_needs_resequencing_and_ends_collision_free() {
         &(),
     )
     .unwrap();
+    let given = workcell::cell::Sequences {
+        routes: blind.routes.clone(),
+        waits: Vec::new(),
+    };
     let evaluated = wcp::evaluate(
         &cell,
-        &blind.routes,
+        &given,
         &SolveOptions::default(),
         Path::new("seq.json"),
     )

@@ -13,4 +13,4 @@ pub use error::InputError;
 pub use precision::{check_precision, MAX_COORDINATE_OVER_DELTA};
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
 pub use scene_writer::scene_document;
-pub use sequences_file::{load_sequences, parse_sequences};
+pub use sequences_file::{load_sequences, parse_sequences, Sequences, Wait};

@@ -4,8 +4,28 @@ use super::{Cell, InputError};
 use serde_json::Value;
 use std::path::Path;
 
+/// Sequences read from a file: each robot's tasks, and waits before given moves.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sequences {
+    /// Task indices of each robot, in the cell's robot order.
+    pub routes: Vec<Vec<usize>>,
+    /// Waits, as a `solve` result lists them in `waits`.
+    pub waits: Vec<Wait>,
+}
+
+/// A wait before one of a robot's moves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wait {
+    /// The robot.
+    pub robot: usize,
+    /// The move it waits before: 0 is the move out of home, k the move after its k-th task.
+    pub before_move: usize,
+    /// How long.
+    pub duration: f64,
+}
+
 /// Reads the sequences at `path` against `cell`: see [`parse_sequences`].
-pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Vec<Vec<usize>>, InputError> {
+pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
     parse_sequences(&text, path, cell)
@@ -15,11 +35,10 @@ pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Vec<Vec<usize>>, Input
 /// result (its `sequences` object), into each robot's task indices, in the cell's robot
 /// order. A robot left out does no task. Refused: unknown robots or tasks, a task given to a
 /// robot not allowed to do it, a task listed twice, a task left out.
-pub fn parse_sequences(
-    text: &str,
-    file: &Path,
-    cell: &Cell,
-) -> Result<Vec<Vec<usize>>, InputError> {
+///
+/// A whole result also brings its `waits` (`[{"robot", "before_move", "duration"}]`), so
+/// that the schedule is the one `solve` certified.
+pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences, InputError> {
     let err = |body: Option<&str>, field: String, reason: String| {
         InputError::new(file, body, field, reason)
     };
@@ -95,5 +114,60 @@ pub fn parse_sequences(
             reason,
         ));
     }
-    Ok(routes)
+    let waits = match doc.get("sequences").and(doc.get("waits")) {
+        None | Some(Value::Null) => Vec::new(),
+        Some(list) => waits(list, file, cell, &routes)?,
+    };
+    Ok(Sequences { routes, waits })
+}
+
+fn waits(
+    list: &Value,
+    file: &Path,
+    cell: &Cell,
+    routes: &[Vec<usize>],
+) -> Result<Vec<Wait>, InputError> {
+    let Value::Array(items) = list else {
+        let reason = "expected a list of {\"robot\", \"before_move\", \"duration\"}";
+        return Err(InputError::new(file, None, "waits", reason));
+    };
+    let mut waits = Vec::with_capacity(items.len());
+    for (k, item) in items.iter().enumerate() {
+        let at = format!("waits[{k}]");
+        let name = item.get("robot").and_then(Value::as_str);
+        let Some(robot) = name.and_then(|n| cell.robots.iter().position(|r| r.name == n)) else {
+            let reason = "`robot` must name a robot of the cell";
+            return Err(InputError::new(file, name, format!("{at}.robot"), reason));
+        };
+        let moves = routes[robot].len() + 1;
+        let before_move = item.get("before_move").and_then(Value::as_u64);
+        let Some(before_move) = before_move.filter(|&m| m < moves as u64) else {
+            let reason = format!(
+                "`before_move` must be a move of the robot: 0 to {}",
+                moves - 1
+            );
+            return Err(InputError::new(
+                file,
+                name,
+                format!("{at}.before_move"),
+                reason,
+            ));
+        };
+        let duration = item.get("duration").and_then(Value::as_f64);
+        let Some(duration) = duration.filter(|d| d.is_finite() && *d >= 0.0) else {
+            let reason = "`duration` must be a non-negative number";
+            return Err(InputError::new(
+                file,
+                name,
+                format!("{at}.duration"),
+                reason,
+            ));
+        };
+        waits.push(Wait {
+            robot,
+            before_move: before_move as usize,
+            duration,
+        });
+    }
+    Ok(waits)
 }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use workcell::cell::{load_cell, load_sequences, scene_document, Cell, InputError};
 use workcell::wcp::report::{
-    collision_json, rounds_json, schedule_json, sequences_json, summary, ResultJson,
+    collision_json, rounds_json, schedule_json, sequences_json, summary, waits_json, ResultJson,
 };
 use workcell::wcp::{self, Collision, Iteration, Progress, Schedule, SolveOptions};
 
@@ -106,6 +106,7 @@ pub fn run_solve(
             collision_free: solved.collision_free,
             sequences,
             iterations: solved.iterations.len(),
+            waits: waits_json(&cell, &solved.delays),
             blind_sequences: Some(sequences_json(&cell, &solved.blind_routes)),
             blind_makespan: Some(solved.blind_makespan),
             blind_optimal: Some(solved.blind_optimal),
@@ -154,9 +155,9 @@ pub fn run_solve(
 /// Evaluates given sequences; exit status 0 collision-free, 1 the schedule collides.
 pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<ExitCode, InputError> {
     let cell = load(path)?;
-    let routes = load_sequences(sequences, &cell)?;
+    let given = load_sequences(sequences, &cell)?;
     let opts = SolveOptions::default();
-    let evaluated = wcp::evaluate(&cell, &routes, &opts, sequences)?;
+    let evaluated = wcp::evaluate(&cell, &given, &opts, sequences)?;
     let collisions: Vec<&Collision> = evaluated.collision.iter().collect();
     let written = exports(&cell, &evaluated.schedule, &collisions, out);
     let failure = match (&evaluated.collision, evaluated.report.certified) {
@@ -176,6 +177,7 @@ pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<Exit
             collision_free: evaluated.collision_free,
             sequences,
             iterations: 1,
+            waits: Vec::new(),
             blind_sequences: None,
             blind_makespan: None,
             blind_optimal: None,

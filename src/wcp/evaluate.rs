@@ -2,8 +2,8 @@
 
 use super::feedback::{SolveOptions, StageTimes};
 use super::moves::node_name;
-use super::schedule::{Collision, MoveCache, Schedule};
-use crate::cell::{Cell, InputError};
+use super::schedule::{Collision, Delay, MoveCache, Schedule};
+use crate::cell::{Cell, InputError, Sequences};
 use crate::collision::{check, CheckReport};
 use std::path::Path;
 use std::time::Instant;
@@ -23,20 +23,37 @@ pub struct Evaluated {
     pub times: StageTimes,
 }
 
-/// Times the robots' `routes` (task indices, as [`crate::cell::parse_sequences`] gives them)
-/// without waits, and checks the schedule. A move the planner cannot make, or that the
+/// Times the given sequences (each robot's tasks and its waits, as
+/// [`crate::cell::parse_sequences`] gives them) and checks the schedule. A move the planner cannot make, or that the
 /// checker does not certify against the obstacles, is an input error about
 /// `sequences_file`.
 pub fn evaluate(
     cell: &Cell,
-    routes: &[Vec<usize>],
+    sequences: &Sequences,
     opts: &SolveOptions,
     sequences_file: &Path,
 ) -> Result<Evaluated, InputError> {
     let mut times = StageTimes::default();
     let clock = Instant::now();
     let mut cache = MoveCache::new(cell, opts.planner);
-    let schedule = Schedule::build(cell, routes, &[], &mut cache).map_err(|e| {
+    let routes = &sequences.routes;
+    let delays: Vec<Delay> = sequences
+        .waits
+        .iter()
+        .map(|w| {
+            let nodes: Vec<usize> = std::iter::once(0)
+                .chain(routes[w.robot].iter().map(|t| t + 1))
+                .chain([0])
+                .collect();
+            Delay {
+                robot: w.robot,
+                before_move: w.before_move,
+                nodes: (nodes[w.before_move], nodes[w.before_move + 1]),
+                duration: w.duration,
+            }
+        })
+        .collect();
+    let schedule = Schedule::build(cell, routes, &delays, &mut cache).map_err(|e| {
         let robot = &cell.robots[e.robot].name;
         let task = if e.to != 0 { e.to } else { e.from } - 1;
         let k = routes[e.robot].iter().position(|&t| t == task).unwrap_or(0);

@@ -3,7 +3,7 @@
 
 use super::feedback::{describe, Iteration, Remedy, StageTimes};
 use super::moves::node_name;
-use super::schedule::{Activity, Collision, Schedule};
+use super::schedule::{Activity, Collision, Delay, Schedule};
 use crate::cell::Cell;
 use crate::collision::Stats;
 use serde::ser::{SerializeMap, Serializer};
@@ -22,6 +22,9 @@ pub struct ResultJson<'a> {
     pub sequences: Vec<(&'a str, Vec<&'a str>)>,
     /// Rounds of sequencing, checking and feedback (1 for `evaluate`).
     pub iterations: usize,
+    /// Waits of the final schedule, which `evaluate` applies when given this document.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub waits: Vec<WaitJson>,
     /// The collision-blind best sequences, before any feedback (solve only).
     #[serde(
         serialize_with = "ordered_optional_map",
@@ -77,6 +80,36 @@ pub struct RoundJson {
     /// For a delay: who waits, where, how long.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub delay: Option<DelayJson>,
+}
+
+/// A wait of the final schedule in the JSON.
+#[derive(Serialize)]
+pub struct WaitJson {
+    /// The robot that waits.
+    pub robot: String,
+    /// Index of the move it waits before (0: out of home).
+    pub before_move: usize,
+    /// That move, e.g. `move weld-1 -> weld-2`.
+    pub before: String,
+    /// How long.
+    pub duration: f64,
+}
+
+/// The waits of a schedule in the JSON's terms.
+pub fn waits_json(cell: &Cell, delays: &[Delay]) -> Vec<WaitJson> {
+    delays
+        .iter()
+        .map(|d| WaitJson {
+            robot: cell.robots[d.robot].name.clone(),
+            before_move: d.before_move,
+            before: Activity::Move {
+                from: d.nodes.0,
+                to: d.nodes.1,
+            }
+            .describe(cell, d.robot),
+            duration: d.duration,
+        })
+        .collect()
 }
 
 /// A delay in the JSON.

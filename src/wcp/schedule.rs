@@ -217,16 +217,29 @@ impl Schedule {
     /// The schedule as a scene for the checker (and `--export-scene`): robots with their
     /// trajectories, then the obstacles.
     pub fn scene(&self, cell: &Cell) -> Scene {
-        let robots = self.robots.iter().zip(&cell.robots).map(|(s, r)| Body {
-            name: r.name.clone(),
-            shape: r.shape.clone(),
-            motion: Motion::Sampled(
-                Trajectory::new(s.samples.clone()).expect("schedules sample increasing times"),
-            ),
-        });
+        let robots = (0..self.robots.len()).map(|r| self.body(cell, r));
         Scene {
             delta: cell.delta,
             bodies: robots.chain(cell.obstacle_bodies()).collect(),
+        }
+    }
+
+    /// Robots `a` and `b` alone: the scene of one pair.
+    pub fn pair_scene(&self, cell: &Cell, a: usize, b: usize) -> Scene {
+        Scene {
+            delta: cell.delta,
+            bodies: vec![self.body(cell, a), self.body(cell, b)],
+        }
+    }
+
+    fn body(&self, cell: &Cell, r: usize) -> Body {
+        Body {
+            name: cell.robots[r].name.clone(),
+            shape: cell.robots[r].shape.clone(),
+            motion: Motion::Sampled(
+                Trajectory::new(self.robots[r].samples.clone())
+                    .expect("schedules sample increasing times"),
+            ),
         }
     }
 
