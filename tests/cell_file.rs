@@ -150,6 +150,16 @@ fn malformed_fields_name_their_path() {
     assert_eq!(e.body.as_deref(), Some("t1"), "{e}");
     let e = refused(&cell("", "", ""));
     assert_eq!(e.field, "robots");
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &task("t1", "[1, 2, 9007199254740992]", ""),
+    ));
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("tasks[0].at", Some("t1"))
+    );
+    assert!(e.reason.contains("angle"), "{e}");
     let e = refused(&cell(&robot("R1", "[1e300, 0]"), "", ""));
     assert_eq!(e.field, "robots[0].home");
     assert!(
@@ -171,6 +181,13 @@ fn sequences_are_checked_against_the_cell() {
         .join(","),
     ));
     let file = Path::new("seq.json");
+    // `sequences` is a robot's name here, not a whole result (which has a `makespan`).
+    let named = parse_sequences(r#"{"sequences": ["t1"], "R2": ["t2"]}"#, file, &c);
+    assert_eq!(
+        named.unwrap_err().field,
+        "sequences",
+        "the robot `sequences` is unknown"
+    );
     let routes = parse_sequences(r#"{"R2": ["t2", "t1"]}"#, file, &c).unwrap();
     assert_eq!(routes.routes, vec![vec![], vec![1, 0]]);
     assert!(routes.waits.is_empty());
@@ -190,8 +207,9 @@ fn sequences_are_checked_against_the_cell() {
             duration: 0.5
         }]
     );
-    let wait =
-        |w: &str| format!(r#"{{"sequences": {{"R1": ["t1"], "R2": ["t2"]}}, "waits": [{w}]}}"#);
+    let wait = |w: &str| {
+        format!(r#"{{"makespan": 1, "sequences": {{"R1": ["t1"], "R2": ["t2"]}}, "waits": [{w}]}}"#)
+    };
     for (w, field) in [
         (
             r#"{"robot": "R3", "before_move": 0, "duration": 1}"#,
@@ -216,7 +234,8 @@ fn sequences_are_checked_against_the_cell() {
             "R2[0]",
             "already done",
         ),
-        (r#"{"R1": ["t1"]}"#, "", "t2"),
+        (r#"{"R1": ["t1"]}"#, "(every robot's list)", "t2"),
+        (r#"{"R2": ["t2"], "R1": ["t1"], "R2": []}"#, "R2", "twice"),
         (r#"{"R9": []}"#, "R9", "no robot"),
         (r#"{"R1": ["t3"]}"#, "R1[0]", "no task"),
         (r#"{"R1": "t1"}"#, "R1", "list"),

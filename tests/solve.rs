@@ -269,3 +269,73 @@ fn crossing_robots_with_forced_tasks_are_separated_by_a_delay() {
     assert_valid_solution(&cell, &solved);
     assert!(solved.schedule.makespan > solved.blind_makespan);
 }
+
+/// One or two unit-limit square robots and the given tasks and obstacles (JSON fragments).
+fn small_cell(robots: &[(&str, &str)], obstacles: &str, tasks: &str) -> Cell {
+    let robots: Vec<String> = robots
+        .iter()
+        .map(|(name, home)| {
+            format!(
+                r#"{{"name": "{name}", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+                    "home": {home}, "max_speed": 1, "max_accel": 1, "max_turn_rate": 1}}"#
+            )
+        })
+        .collect();
+    let text = format!(
+        r#"{{"delta": 0.01, "robots": [{}], "obstacles": [{obstacles}], "tasks": [{tasks}]}}"#,
+        robots.join(",")
+    );
+    parse_cell(&text, Path::new("small.json")).unwrap().cell
+}
+
+#[test]
+fn negligible_task_durations_are_instants_not_crashes() {
+    // 2 + 1e-16 rounds to 2: the hold has no length on the time axis.
+    let cell = small_cell(
+        &[("R1", "[0, 0]")],
+        "",
+        r#"{"name": "t", "at": [1, 0], "duration": 1e-16}"#,
+    );
+    assert_valid_solution(&cell, &solve(&cell, 0));
+}
+
+#[test]
+fn time_scales_f64_cannot_hold_together_are_refused_not_dropped() {
+    // After a task of 1e17, the way home (seconds) would vanish in rounding.
+    let cell = small_cell(
+        &[("R1", "[0, 0]")],
+        "",
+        r#"{"name": "t", "at": [1, 0], "duration": 1e17}"#,
+    );
+    let opts = SolveOptions::default();
+    let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+    let e = wcp::solve(&cell, &prepared, &opts, &()).expect_err("refused");
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("robots[0]", Some("R1"))
+    );
+    assert!(e.reason.contains("orders of magnitude"), "{e}");
+}
+
+#[test]
+fn a_home_too_close_to_turn_from_is_blamed_not_its_task() {
+    // 1.01 delta from the wall: legal, but below the planner's clearance of delta + 2%.
+    let wall = r#"{"name": "wall", "shape": [[0.5101,-1],[2,-1],[2,1],[0.5101,1]]}"#;
+    let task = r#"{"name": "t1", "at": [-3, 0], "duration": 1, "robots": ["R1"]}"#;
+    let cell = small_cell(&[("R1", "[0, 0]"), ("R2", "[0, 5]")], wall, task);
+    let e = wcp::prepare(&cell, &SolveOptions::default(), &())
+        .err()
+        .expect("refused");
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("robots[0].home", Some("R1"))
+    );
+    assert!(e.reason.contains("\"wall\""), "{e}");
+    // A robot with no task never leaves such a home, and needs no move.
+    let cell = small_cell(
+        &[("R1", "[0, 0]"), ("R2", "[0, 5]")],
+        wall,
+        &task.replace("R1", "R2"),
+    );
+    assert_valid_solution(&cell, &solve(&cell, 0));
+}

@@ -197,12 +197,13 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
             ));
         }
         let home = pose(&r.home).map_err(|reason| err(&r.name, format!("{at}.home"), reason))?;
-        if home.pos.amax() > limit || (shape.radius() * home.theta).abs() > limit {
-            return Err(err(
-                &r.name,
-                format!("{at}.home"),
-                too_large(home.pos.amax(), delta),
-            ));
+        if home.pos.amax() > limit {
+            let reason = too_large(home.pos.amax(), delta);
+            return Err(err(&r.name, format!("{at}.home"), reason));
+        }
+        if (shape.radius() * home.theta).abs() > limit {
+            let reason = angle_too_large(home.theta, shape.radius(), delta);
+            return Err(err(&r.name, format!("{at}.home"), reason));
         }
         for (field, value) in [
             ("max_speed", r.max_speed),
@@ -339,6 +340,15 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
             let reason = "no robot may do this task: the list is empty";
             return Err(err(&t.name, format!("{at}.robots"), reason.into()));
         }
+        // The angle is resolved to within ulp(θ); at the robot's rim that is a length.
+        let rim = allowed
+            .iter()
+            .map(|&r| robots[r].shape.radius())
+            .fold(0.0, f64::max);
+        if (rim * pose.theta).abs() > limit {
+            let reason = angle_too_large(pose.theta, rim, delta);
+            return Err(err(&t.name, format!("{at}.at"), reason));
+        }
         tasks.push(Task {
             name: t.name.clone(),
             at: pose,
@@ -404,6 +414,16 @@ fn too_large(value: f64, delta: f64) -> String {
     format!(
         "coordinate {value:e} is too large for delta = {delta:e} (limit {:e}): f64 cannot \
          resolve delta there; move the origin or raise delta",
+        MAX_COORDINATE_OVER_DELTA * delta
+    )
+}
+
+fn angle_too_large(theta: f64, radius: f64, delta: f64) -> String {
+    format!(
+        "angle {theta:e} is too large for delta = {delta:e}: f64 resolves it only to {:.1e} \
+         rad, {:.1e} at the robot's rim (limit |radius x theta| <= {:e}); reduce it modulo 2 pi",
+        theta.abs() * f64::EPSILON,
+        (radius * theta).abs() * f64::EPSILON,
         MAX_COORDINATE_OVER_DELTA * delta
     )
 }

@@ -32,7 +32,7 @@ pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError>
 }
 
 /// Parses `{"R1": ["weld-3", "weld-1"], "R2": ["weld-2"]}`, or a whole `solve --json`
-/// result (its `sequences` object), into each robot's task indices, in the cell's robot
+/// result (recognised by its `sequences` and `makespan`; its `sequences` object is read), into each robot's task indices, in the cell's robot
 /// order. A robot left out does no task. Refused: unknown robots or tasks, a task given to a
 /// robot not allowed to do it, a task listed twice, a task left out.
 ///
@@ -44,17 +44,29 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
     };
     let doc: Value = serde_json::from_str(text)
         .map_err(|e| err(None, String::new(), format!("not valid JSON: {e}")))?;
-    let (object, prefix) = match doc.get("sequences") {
-        Some(inner) => (inner, "sequences."),
-        None => (&doc, ""),
-    };
-    let Value::Object(map) = object else {
+    // A whole `solve` result has `makespan` beside `sequences`; otherwise `sequences` may be
+    // a robot's name.
+    let whole = doc.get("sequences").is_some() && doc.get("makespan").is_some();
+    let prefix = if whole { "sequences." } else { "" };
+    // Read again, keeping every key: `Value` would let a repeated robot overwrite the first.
+    let entries = if whole {
+        serde_json::from_str::<Whole>(text).map(|w| w.sequences)
+    } else {
+        serde_json::from_str::<Entries>(text)
+    }
+    .map_err(|_| {
         let reason = "expected an object mapping robot names to lists of task names".to_owned();
-        return Err(err(None, prefix.trim_end_matches('.').to_owned(), reason));
-    };
+        err(None, prefix.trim_end_matches('.').to_owned(), reason)
+    })?;
+    let mut seen = std::collections::HashSet::new();
+    if let Some((robot, _)) = entries.0.iter().find(|(k, _)| !seen.insert(k.as_str())) {
+        let reason = "the robot is listed twice".to_owned();
+        return Err(err(Some(robot), format!("{prefix}{robot}"), reason));
+    }
+    let map = entries.0;
     let mut routes = vec![Vec::new(); cell.robots.len()];
     let mut done_by: Vec<Option<String>> = vec![None; cell.tasks.len()];
-    for (robot, list) in map {
+    for (robot, list) in &map {
         let field = format!("{prefix}{robot}");
         let Some(r) = cell.robots.iter().position(|x| &x.name == robot) else {
             return Err(err(
@@ -108,17 +120,50 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
         let name = &cell.tasks[t].name;
         let reason =
             format!("task \"{name}\" is in no robot's sequence: every task must be done once");
-        return Err(err(
-            Some(name),
-            prefix.trim_end_matches('.').to_owned(),
-            reason,
-        ));
+        let field = if whole {
+            "sequences"
+        } else {
+            "(every robot's list)"
+        };
+        return Err(err(Some(name), field.to_owned(), reason));
     }
-    let waits = match doc.get("sequences").and(doc.get("waits")) {
+    let waits = match doc.get("waits").filter(|_| whole) {
         None | Some(Value::Null) => Vec::new(),
         Some(list) => waits(list, file, cell, &routes)?,
     };
     Ok(Sequences { routes, waits })
+}
+
+/// An object's entries in document order, repeated keys kept.
+struct Entries(Vec<(String, Value)>);
+
+impl<'de> serde::Deserialize<'de> for Entries {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = Entries;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an object")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<Entries, A::Error> {
+                let mut entries = Vec::new();
+                while let Some(entry) = map.next_entry::<String, Value>()? {
+                    entries.push(entry);
+                }
+                Ok(Entries(entries))
+            }
+        }
+        d.deserialize_map(Visitor)
+    }
+}
+
+/// The part of a `solve` result read here.
+#[derive(serde::Deserialize)]
+struct Whole {
+    sequences: Entries,
 }
 
 fn waits(

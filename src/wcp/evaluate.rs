@@ -1,8 +1,7 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
 use super::feedback::{SolveOptions, StageTimes};
-use super::moves::node_name;
-use super::schedule::{Collision, Delay, MoveCache, Schedule};
+use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
 use crate::cell::{Cell, InputError, Sequences};
 use crate::collision::{check, CheckReport};
 use std::path::Path;
@@ -54,16 +53,19 @@ pub fn evaluate(
         })
         .collect();
     let schedule = Schedule::build(cell, routes, &delays, &mut cache).map_err(|e| {
-        let robot = &cell.robots[e.robot].name;
-        let task = if e.to != 0 { e.to } else { e.from } - 1;
-        let k = routes[e.robot].iter().position(|&t| t == task).unwrap_or(0);
-        let reason = format!(
-            "{robot} cannot move from {} to {}: {}",
-            node_name(cell, e.robot, e.from),
-            node_name(cell, e.robot, e.to),
-            e.why
-        );
-        InputError::new(sequences_file, Some(robot), format!("{robot}[{k}]"), reason)
+        let r = e.robot();
+        let robot = &cell.robots[r].name;
+        let field = match e {
+            // The position in the robot's list of the task the move leads to (or leaves,
+            // for the way home).
+            BuildError::Move { from, to, .. } => {
+                let task = if to != 0 { to } else { from }.saturating_sub(1);
+                let k = routes[r].iter().position(|&t| t == task).unwrap_or(0);
+                format!("{robot}[{k}]")
+            }
+            BuildError::Precision { .. } => robot.clone(),
+        };
+        InputError::new(sequences_file, Some(robot), field, e.reason(cell))
     })?;
     times.scheduling = clock.elapsed();
     let clock = Instant::now();

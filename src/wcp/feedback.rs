@@ -3,7 +3,7 @@
 
 use super::graph::{check_reachable, WcpGraph};
 use super::moves::MoveTable;
-use super::schedule::{Activity, Collision, Delay, MoveCache, Schedule};
+use super::schedule::{Activity, BuildError, Collision, Delay, MoveCache, Schedule};
 use super::sequencer::{self, Conflict, Instance, SequencerError, SequencerOptions};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckOptions, CheckReport};
@@ -216,9 +216,16 @@ pub fn solve(
                 collision: None,
                 remedy: None,
             });
-            let failure = (!report.certified).then(|| {
-                "the checker cannot certify the schedule: two bodies graze delta".to_owned()
-            });
+            let failure = if report.collision {
+                Some(
+                    "internal error: the checker's first contact names no body of the cell"
+                        .to_owned(),
+                )
+            } else {
+                (!report.certified).then(|| {
+                    "the checker cannot certify the schedule: two bodies graze delta".to_owned()
+                })
+            };
             return done(failure, iterations, times);
         };
         if iterations.len() + 1 >= opts.max_iterations {
@@ -381,16 +388,24 @@ fn build(
     cache: &mut MoveCache,
 ) -> Result<Schedule, InputError> {
     Schedule::build(cell, routes, delays, cache).map_err(|e| {
-        // The table certified every move the sequencer may choose: a failure here means the
-        // planner is not deterministic, a defect to report rather than hide.
-        cell.error(
-            Some(&cell.robots[e.robot].name),
-            "",
-            format!(
-                "internal error: a move certified before fails now: {}",
-                e.why
+        let robot = &cell.robots[e.robot()].name;
+        match e {
+            // The table certified every move the sequencer may choose: a failure here means
+            // the planner is not deterministic, a defect to report rather than hide.
+            BuildError::Move { .. } => cell.error(
+                Some(robot),
+                "",
+                format!(
+                    "internal error: a move certified before fails now: {}",
+                    e.reason(cell)
+                ),
             ),
-        )
+            BuildError::Precision { .. } => cell.error(
+                Some(robot),
+                format!("robots[{}]", e.robot()),
+                e.reason(cell),
+            ),
+        }
     })
 }
 

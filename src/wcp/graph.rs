@@ -1,6 +1,6 @@
 //! The work-cell graph: homes and tasks as nodes, each robot's certified travel times as arcs.
 
-use super::moves::MoveTable;
+use super::moves::{MoveFailure, MoveTable};
 use super::sequencer::{Instance, SequencerError};
 use crate::cell::{Cell, InputError};
 use petgraph::graph::{DiGraph, NodeIndex};
@@ -161,6 +161,28 @@ pub struct GraphFileArc {
 /// Refuses a cell with a task that none of its allowed robots can reach from home: exit
 /// status 2, naming the task and each robot's reason.
 pub fn check_reachable(cell: &Cell, table: &MoveTable) -> Result<(), InputError> {
+    // A home from which no move can start is the home's fault, not its tasks'.
+    for (r, robot) in cell.robots.iter().enumerate() {
+        let moves = cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
+        let blocked: Vec<&str> = table.failures[r]
+            .iter()
+            .filter_map(|(a, _, why)| match why {
+                MoveFailure::Blocked {
+                    end: "start",
+                    obstacle,
+                } if *a == 0 => Some(obstacle.as_str()),
+                _ => None,
+            })
+            .collect();
+        if moves > 0 && blocked.len() == moves {
+            let reason = format!(
+                "no move can start from this home: the robot is too close to obstacle \"{}\" \
+                 for the planner's clearance (delta + 2%, swept over each move's rotation)",
+                blocked[0]
+            );
+            return Err(cell.error(Some(&robot.name), format!("robots[{r}].home"), reason));
+        }
+    }
     for (t, task) in cell.tasks.iter().enumerate() {
         let node = t + 1;
         if task

@@ -118,7 +118,17 @@ pub fn certified_move(
         b,
         planner,
     )
-    .map_err(MoveFailure::Plan)?;
+    .map_err(|e| match e {
+        PlanError::StartBlocked { obstacle } => MoveFailure::Blocked {
+            end: "start",
+            obstacle: cell.obstacles[obstacle].name.clone(),
+        },
+        PlanError::GoalBlocked { obstacle } => MoveFailure::Blocked {
+            end: "goal",
+            obstacle: cell.obstacles[obstacle].name.clone(),
+        },
+        other => MoveFailure::Plan(other),
+    })?;
     certify(cell, r, &planned.samples, obstacles)?;
     Ok(planned)
 }

@@ -186,15 +186,58 @@ fn reversed(m: &PlannedMove) -> PlannedMove {
 
 /// Why a schedule cannot be built.
 #[derive(Clone, Debug, PartialEq)]
-pub struct BuildError {
-    /// The robot.
-    pub robot: usize,
-    /// The move it cannot make.
-    pub from: usize,
-    /// Its target.
-    pub to: usize,
-    /// Why.
-    pub why: MoveFailure,
+pub enum BuildError {
+    /// A robot has no certified move between two of its nodes.
+    Move {
+        /// The robot.
+        robot: usize,
+        /// The move's source node.
+        from: usize,
+        /// Its target node.
+        to: usize,
+        /// Why.
+        why: MoveFailure,
+    },
+    /// At time `time`, f64 can no longer tell a robot's samples apart: durations and limits
+    /// span too many orders of magnitude for one time axis.
+    Precision {
+        /// The robot.
+        robot: usize,
+        /// Where its samples merge.
+        time: f64,
+    },
+}
+
+impl BuildError {
+    /// The robot concerned.
+    pub fn robot(&self) -> usize {
+        match self {
+            BuildError::Move { robot, .. } | BuildError::Precision { robot, .. } => *robot,
+        }
+    }
+
+    /// Why, in words.
+    pub fn reason(&self, cell: &Cell) -> String {
+        match self {
+            BuildError::Move {
+                robot,
+                from,
+                to,
+                why,
+            } => format!(
+                "{} cannot move from {} to {}: {why}",
+                cell.robots[*robot].name,
+                node_name(cell, *robot, *from),
+                node_name(cell, *robot, *to)
+            ),
+            BuildError::Precision { time, .. } => format!(
+                "at t = {time:e} the time steps of its moves fall below what f64 resolves there \
+                 ({:e}): task durations, waits and move times span too many orders of \
+                 magnitude; rescale the time unit or the limits",
+                time.abs() * f64::EPSILON
+            ),
+        }
+    }
 }
 
 impl Schedule {
@@ -311,6 +354,14 @@ fn pose_at(samples: &[Sample], t: f64) -> Pose {
         .pose_at(t)
 }
 
+/// Appends a rest at the robot's current pose, unless it falls on the last sample's time
+/// (a zero or negligible hold: the pose is the same either way).
+fn hold(samples: &mut Vec<Sample>, rest: Sample) {
+    if rest.t > samples.last().expect("starts with a sample").t {
+        samples.push(rest);
+    }
+}
+
 fn build_robot(
     cell: &Cell,
     r: usize,
@@ -331,10 +382,16 @@ fn build_robot(
     let mut path = vec![home.pos];
     let mut now = 0.0;
     let mut theta = home.theta;
-    let nodes: Vec<usize> = std::iter::once(0)
-        .chain(route.iter().map(|t| t + 1))
-        .chain([0])
-        .collect();
+    // A robot without tasks stays home: no move, not even home to home.
+    let nodes: Vec<usize> = if route.is_empty() {
+        Vec::new()
+    } else {
+        std::iter::once(0)
+            .chain(route.iter().map(|t| t + 1))
+            .chain([0])
+            .collect()
+    };
+    let precision = |time: f64| BuildError::Precision { robot: r, time };
     for (m, pair) in nodes.windows(2).enumerate() {
         let (from, to) = (pair[0], pair[1]);
         let wait: f64 = delays
@@ -344,7 +401,7 @@ fn build_robot(
             .sum();
         if wait > 0.0 {
             let pose = Pose {
-                pos: samples.last().expect("starts with a sample").pos,
+                pos: node_pose(cell, r, from).pos,
                 theta,
             };
             segments.push(Segment {
@@ -354,9 +411,9 @@ fn build_robot(
                 delayable_move: Some(m),
             });
             now += wait;
-            samples.push(rest(now, pose));
+            hold(&mut samples, rest(now, pose));
         }
-        let planned = moves.get(r, from, to).map_err(|why| BuildError {
+        let planned = moves.get(r, from, to).map_err(|why| BuildError::Move {
             robot: r,
             from,
             to,
@@ -365,15 +422,18 @@ fn build_robot(
         // Keep the angle continuous: a planned move starts at the node's angle, the robot
         // may have arrived at the same angle plus turns.
         let turns = TAU * ((theta - planned.samples[0].theta) / TAU).round();
-        for s in &planned.samples {
+        // The first sample is where the robot already is; every later one must come later
+        // on the time axis, or the move would silently vanish.
+        for s in &planned.samples[1..] {
             let t = now + s.t;
-            if t > samples.last().expect("starts with a sample").t {
-                samples.push(Sample {
-                    t,
-                    theta: s.theta + turns,
-                    ..*s
-                });
+            if t <= samples.last().expect("starts with a sample").t {
+                return Err(precision(t));
             }
+            samples.push(Sample {
+                t,
+                theta: s.theta + turns,
+                ..*s
+            });
         }
         segments.push(Segment {
             activity: Activity::Move { from, to },
@@ -394,15 +454,11 @@ fn build_robot(
                 delayable_move: Some(m),
             });
             now += duration;
-            if duration > 0.0 {
-                samples.push(rest(
-                    now,
-                    Pose {
-                        pos: node_pose(cell, r, to).pos,
-                        theta,
-                    },
-                ));
-            }
+            let pose = Pose {
+                pos: node_pose(cell, r, to).pos,
+                theta,
+            };
+            hold(&mut samples, rest(now, pose));
         }
     }
     // The last sample is the arrival home (or the start, for an empty route).
