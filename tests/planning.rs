@@ -398,3 +398,35 @@ fn timings() {
         );
     }
 }
+
+/// A pose 5 cm from a box, at a quarter turn from the start: reachable at its final angle,
+/// not while still turning. The move turns in place where there is room instead.
+#[test]
+fn a_goal_too_close_to_turn_at_is_reached_by_turning_apart() {
+    let robot = rect(-0.3, -0.3, 0.3, 0.3);
+    let boxed = [rect(2.0, 2.0, 3.0, 3.0)];
+    let (from, to) = (pose(0.0, 0.0, 0.0), pose(1.65, 2.5, PI / 2.0));
+    let m = plan(&robot, &boxed, from, to);
+    certify(&robot, &boxed, &m);
+    let (first, last) = (m.samples[0], *m.samples.last().unwrap());
+    assert_eq!(
+        (first.t, first.pos, first.theta),
+        (0.0, from.pos, from.theta)
+    );
+    assert_eq!((last.t, last.pos), (m.duration, to.pos));
+    assert!((last.theta - to.theta).abs() < 1e-12);
+    assert!(m.samples.windows(2).all(|w| w[1].t > w[0].t));
+    for s in &m.samples {
+        assert!(s.vel.norm() <= LIMITS.max_speed * (1.0 + REL));
+        assert!(s.omega.abs() <= LIMITS.max_turn_rate * (1.0 + REL));
+    }
+    // The robot has finished turning before it drives in: after the last sample off the
+    // goal angle, it still moves.
+    let turned = m
+        .samples
+        .iter()
+        .rposition(|s| (s.theta - to.theta).abs() > 1e-12)
+        .unwrap();
+    assert!(m.samples[turned + 1..].iter().any(|s| s.pos != to.pos));
+    assert!(m.duration >= rest_to_rest_time((to.pos - from.pos).norm(), 1.5, 2.0));
+}

@@ -22,7 +22,8 @@
 //!   the margin absorbs the rounding of the construction and of the boundary tests.
 //! * **Path.** If the straight segment from start to goal crosses no grown obstacle it is
 //!   the path. Otherwise the path is the fastest one in the visibility graph of the grown
-//!   obstacles' vertices, start and goal, among taut paths (each waypoint wraps an
+//!   obstacles' vertices, start and goal (built over the obstacles that block the path
+//!   found so far, until it crosses no other: the same answer as over all of them), among taut paths (each waypoint wraps an
 //!   obstacle corner): an edge may touch a grown obstacle or run along its boundary.
 //!   Overlapping grown obstacles are fine; a vertex inside another one is not used.
 //!   Where the path wraps a rounded grown obstacle (the clearance polygon, the arcs of a
@@ -48,6 +49,11 @@
 //!   profiles at its time. Between samples the checker interpolates linearly: G stays on
 //!   the path segment and θ within the swept range, so the interpolated motion stays
 //!   inside the region the planner proved clear.
+//! * **Turning apart.** When the move cannot turn on the way (its start or goal too close
+//!   to an obstacle for the swept robot, or no path for it), it is planned as three moves
+//!   of this model: at the start angle to a turning point, a turn in place there, at the
+//!   goal angle to the goal; the fastest over a few turning points (the start, the goal,
+//!   rings around them) wins. See `turn_apart.rs`.
 //! * **No motion.** When `from` and `to` are the same pose (same position, `Δθ = 0`) the
 //!   move lasts 0 and has a single sample, at t = 0 (the start is still checked).
 //!
@@ -76,10 +82,11 @@ mod minkowski;
 mod plan;
 mod profile;
 mod sampling;
+mod turn_apart;
 mod visibility;
 
-pub use plan::plan_move;
 pub use profile::rest_to_rest_time;
+pub use turn_apart::plan_move;
 
 #[cfg(doc)]
 use crate::geometry::ConvexPolygon;

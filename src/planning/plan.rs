@@ -20,7 +20,7 @@ const TOL_REL: f64 = 1e-12;
 /// See the [module documentation](super) for the motion model. Errors: invalid limits,
 /// δ, poses or options; a start or goal too close to an obstacle (the first in slice
 /// order); no path.
-pub fn plan_move(
+pub(super) fn plan_direct(
     shape: &ConvexPolygon,
     limits: &RobotLimits,
     obstacles: &[ConvexPolygon],
@@ -216,7 +216,7 @@ mod tests {
             max_accel: 0.0,
             ..LIMITS
         };
-        let e = plan_move(&robot, &bad, &[], 0.1, a, b, &opts).unwrap_err();
+        let e = plan_direct(&robot, &bad, &[], 0.1, a, b, &opts).unwrap_err();
         assert_eq!(
             e,
             PlanError::InvalidLimits {
@@ -224,12 +224,12 @@ mod tests {
                 value: 0.0
             }
         );
-        let e = plan_move(&robot, &LIMITS, &[], -1.0, a, b, &opts).unwrap_err();
+        let e = plan_direct(&robot, &LIMITS, &[], -1.0, a, b, &opts).unwrap_err();
         assert!(matches!(
             e,
             PlanError::InvalidArgument { name: "delta", .. }
         ));
-        let e = plan_move(
+        let e = plan_direct(
             &robot,
             &LIMITS,
             &[],
@@ -243,7 +243,7 @@ mod tests {
             rotation_step: 2.0,
             ..opts
         };
-        let e = plan_move(&robot, &LIMITS, &[], 0.1, a, b, &opts).unwrap_err();
+        let e = plan_direct(&robot, &LIMITS, &[], 0.1, a, b, &opts).unwrap_err();
         assert!(matches!(
             e,
             PlanError::InvalidArgument {
@@ -257,7 +257,7 @@ mod tests {
     fn no_motion_is_one_sample() {
         let robot = square(0.0, 0.0, 0.5);
         let p = pose(1.0, 2.0, 0.3);
-        let m = plan_move(&robot, &LIMITS, &[], 0.1, p, p, &PlannerOptions::default()).unwrap();
+        let m = plan_direct(&robot, &LIMITS, &[], 0.1, p, p, &PlannerOptions::default()).unwrap();
         assert_eq!(m.duration, 0.0);
         assert_eq!(m.samples.len(), 1);
         assert_eq!((m.samples[0].pos, m.samples[0].theta), (p.pos, p.theta));
@@ -267,7 +267,7 @@ mod tests {
     fn pure_rotation_takes_the_rotation_time() {
         let robot = square(0.0, 0.0, 0.5);
         let (a, b) = (pose(1.0, 2.0, 0.0), pose(1.0, 2.0, 2.0));
-        let m = plan_move(&robot, &LIMITS, &[], 0.1, a, b, &PlannerOptions::default()).unwrap();
+        let m = plan_direct(&robot, &LIMITS, &[], 0.1, a, b, &PlannerOptions::default()).unwrap();
         let alpha = LIMITS.max_accel / robot.radius();
         assert_eq!(
             m.duration,
@@ -285,7 +285,7 @@ mod tests {
         let wall = square(1.6, 0.0, 1.0);
         let opts = PlannerOptions::default();
         let (a, b) = (pose(0.0, 0.0, 0.0), pose(0.0, -3.0, 0.0));
-        assert!(plan_move(
+        assert!(plan_direct(
             &robot,
             &LIMITS,
             std::slice::from_ref(&wall),
@@ -296,7 +296,7 @@ mod tests {
         )
         .is_ok());
         let turned = pose(0.0, -3.0, 0.8);
-        let e = plan_move(&robot, &LIMITS, &[wall], 0.01, a, turned, &opts).unwrap_err();
+        let e = plan_direct(&robot, &LIMITS, &[wall], 0.01, a, turned, &opts).unwrap_err();
         assert_eq!(e, PlanError::StartBlocked { obstacle: 0 });
     }
 }
