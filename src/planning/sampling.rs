@@ -67,7 +67,7 @@ impl Timing<'_> {
         let gap = MERGE_REL * self.duration;
         let mut merged: Vec<f64> = Vec::with_capacity(times.len());
         for t in times {
-            if merged.last().map_or(true, |&last| t - last > gap) {
+            if merged.last().is_none_or(|&last| t - last > gap) {
                 merged.push(t);
             }
         }

@@ -279,7 +279,7 @@ pub fn solve(
                 let mut candidate = delays.clone();
                 candidate.push(delay);
                 let makespan = build(cell, &routes, &candidate, &mut cache)?.makespan;
-                if best.as_ref().map_or(true, |b| makespan < b.makespan) {
+                if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                     best = Some(Candidate {
                         makespan,
                         remedy: Remedy::Delay(delay),
