@@ -222,3 +222,48 @@ fn bad_cells_and_sequences_exit_2_naming_file_body_and_field() {
     assert!(text(&out.stdout).contains("makespan"));
     assert!(text(&out.stderr).contains("/no/such/dir/x.svg"));
 }
+
+#[test]
+fn evaluate_reproduces_results_with_waits_and_its_own_output() {
+    let robot = |name: &str, x: f64| {
+        format!(
+            r#"{{"name": "{name}", "shape": [[-0.3,-0.3],[0.3,-0.3],[0.3,0.3],[-0.3,0.3]],
+                "home": [{x}, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1.5}}"#
+        )
+    };
+    let cell = temp("waits", "crossing.json");
+    std::fs::write(
+        &cell,
+        format!(
+            r#"{{"delta": 0.01, "robots": [{}, {}], "tasks": [
+                {{"name": "east", "at": [10, 3], "duration": 1, "robots": ["R1"]}},
+                {{"name": "west", "at": [0, 3], "duration": 1, "robots": ["R2"]}}]}}"#,
+            robot("R1", 0.0),
+            robot("R2", 10.0)
+        ),
+    )
+    .unwrap();
+    let cell = cell.to_str().unwrap();
+    let solved = workcell(&["solve", cell, "--json"]);
+    assert_eq!(solved.status.code(), Some(0));
+    let result = json(&solved);
+    assert!(
+        !result["waits"].as_array().unwrap().is_empty(),
+        "the crossing needs a wait"
+    );
+    let mut document = temp("waits", "result.json");
+    std::fs::write(&document, &solved.stdout).unwrap();
+    // Twice: on the solve result, then on evaluate's own output.
+    for round in 0..2 {
+        let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "round {round}: {}",
+            text(&out.stdout)
+        );
+        assert_eq!(json(&out)["makespan"], result["makespan"]);
+        document = temp("waits", &format!("evaluated-{round}.json"));
+        std::fs::write(&document, &out.stdout).unwrap();
+    }
+}

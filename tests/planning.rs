@@ -430,3 +430,24 @@ fn a_goal_too_close_to_turn_at_is_reached_by_turning_apart() {
     assert!(m.samples[turned + 1..].iter().any(|s| s.pos != to.pos));
     assert!(m.duration >= rest_to_rest_time((to.pos - from.pos).norm(), 1.5, 2.0));
 }
+
+/// A half turn near a box: the turn in place must go the way the direct move would, not
+/// flip to the other half turn and leave a full turn to jump over at the next leg.
+#[test]
+fn a_half_turn_apart_turns_one_way_within_the_turn_rate() {
+    let robot = rect(-0.3, -0.3, 0.3, 0.3);
+    let boxed = [rect(2.0, 2.0, 3.0, 3.0)];
+    let (from, to) = (pose(0.0, 0.0, 3.23), pose(1.65, 2.5, 0.08840734641020687));
+    let m = plan(&robot, &boxed, from, to);
+    certify(&robot, &boxed, &m);
+    let last = m.samples.last().unwrap();
+    assert_eq!(last.theta, from.theta + angle_between(from.theta, to.theta));
+    for w in m.samples.windows(2) {
+        let rate = (w[1].theta - w[0].theta).abs() / (w[1].t - w[0].t);
+        assert!(
+            rate <= LIMITS.max_turn_rate * (1.0 + REL),
+            "{rate} rad/s at t = {}",
+            w[0].t
+        );
+    }
+}

@@ -339,3 +339,13 @@ fn a_home_too_close_to_turn_from_is_blamed_not_its_task() {
     );
     assert_valid_solution(&cell, &solve(&cell, 0));
 }
+
+#[test]
+fn a_shortened_wait_never_parks_a_robot_where_it_is_hit_for_good() {
+    // Found by review: half of R0's wait got it home before R1 came by, and a robot back
+    // home can no longer be delayed. Waits are only shortened when that cannot happen.
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cells/parked-after-a-short-wait.json");
+    let cell = load_cell(&path).unwrap().cell;
+    assert_valid_solution(&cell, &solve(&cell, 0));
+}

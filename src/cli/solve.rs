@@ -177,7 +177,7 @@ pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<Exit
             collision_free: evaluated.collision_free,
             sequences,
             iterations: 1,
-            waits: Vec::new(),
+            waits: waits_json(&cell, &evaluated.delays),
             blind_sequences: None,
             blind_makespan: None,
             blind_optimal: None,

@@ -49,38 +49,36 @@ pub fn plan_move(
     }
     // The goal angle as the direct move would end: the start angle plus the shortest turn.
     let end_theta = from.theta + turn;
+    let at = |pos: Vec2, theta: f64| Pose { pos, theta };
+    // No turning point helps a robot that cannot stand at its start or goal even without
+    // turning, nor one that finds no way at either fixed angle: say so at once.
+    let stands = |p: Pose| plan(p, p).is_ok();
+    if !stands(from) || !stands(at(to.pos, end_theta)) {
+        return Err(error);
+    }
+    if error == PlanError::NoPath
+        && plan(from, at(to.pos, from.theta)) == Err(PlanError::NoPath)
+        && plan(at(from.pos, end_theta), at(to.pos, end_theta)) == Err(PlanError::NoPath)
+    {
+        return Err(error);
+    }
     let legs = |p: Vec2| -> Option<PlannedMove> {
-        let first = plan(
-            from,
-            Pose {
-                pos: p,
-                theta: from.theta,
-            },
-        )
-        .ok()?;
-        let spin = plan(
-            Pose {
-                pos: p,
-                theta: from.theta,
-            },
-            Pose {
-                pos: p,
-                theta: end_theta,
-            },
-        )
-        .ok()?;
-        let last = plan(
-            Pose {
-                pos: p,
-                theta: end_theta,
-            },
-            Pose {
-                pos: to.pos,
-                theta: end_theta,
-            },
-        )
-        .ok()?;
-        Some(chain(&[first, spin, last]))
+        let first = plan(from, at(p, from.theta)).ok()?;
+        // The turn is asked with the goal's own angle, as the direct move asks it: the same
+        // shortest turn, even for a half turn, where from.theta + turn could round to the
+        // other way round.
+        let spin = plan(at(p, from.theta), at(p, to.theta)).ok()?;
+        let last = plan(at(p, end_theta), at(to.pos, end_theta)).ok()?;
+        let legs = [first, spin, last];
+        // Each leg must start where and at the angle the previous one stopped.
+        let joined = legs.windows(2).all(|w| {
+            let (a, b) = (
+                w[0].samples.last().expect("a move has samples"),
+                &w[1].samples[0],
+            );
+            a.pos == b.pos && a.theta == b.theta
+        });
+        joined.then(|| chain(&legs))
     };
     let radius = shape.radius();
     let mut points = vec![from.pos, to.pos];
@@ -114,7 +112,6 @@ fn chain(legs: &[PlannedMove]) -> PlannedMove {
         start += leg.duration;
     }
     // A turn in place repeats its point.
-    path.dedup();
     path.dedup();
     // The last sample carries the duration exactly, as for a direct move.
     PlannedMove {

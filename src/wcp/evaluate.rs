@@ -16,6 +16,8 @@ pub struct Evaluated {
     pub report: CheckReport,
     /// Its first collision, if any.
     pub collision: Option<Collision>,
+    /// The waits applied, as given.
+    pub delays: Vec<Delay>,
     /// True when the schedule is certified collision-free.
     pub collision_free: bool,
     /// Wall time per stage (planning counts the moves planned for these sequences only).
@@ -74,6 +76,7 @@ pub fn evaluate(
     let collision = schedule.collision(cell, &report);
     let collision_free = collision.is_none() && report.certified;
     Ok(Evaluated {
+        delays,
         schedule,
         report,
         collision,

@@ -328,8 +328,8 @@ struct Candidate {
 const DELAY_FRACTIONS: [f64; 3] = [0.125, 0.25, 0.5];
 
 /// The shortest of the tried fractions of `full` after which the two robots no longer meet
-/// while the delayed robot's conflicting activity (`segment_end`, shifted by the wait) lasts;
-/// `full` if none of them does.
+/// while the delayed robot's conflicting activity (`segment_end`, shifted by the wait) lasts,
+/// nor meet later with one of them back home; `full` if none of them does.
 #[allow(clippy::too_many_arguments)]
 fn shortest_delay(
     cell: &Cell,
@@ -350,9 +350,16 @@ fn shortest_delay(
         trial.push(delay);
         let schedule = build(cell, routes, &trial, cache)?;
         let report = check(&schedule.pair_scene(cell, full.robot, other), &opts.check);
-        let cleared = report
-            .first_contact
-            .map_or(report.certified, |c| c.time >= segment_end + delay.duration);
+        // The pair must not meet while the conflicting activity lasts, nor later with one of
+        // them already home for good: no wait could separate them then.
+        let cleared = match report.first_contact {
+            None => report.certified,
+            Some(c) => {
+                let done =
+                    |r: usize| schedule.robots[r].segment_at(c.time).activity == Activity::Done;
+                c.time >= segment_end + delay.duration && !done(full.robot) && !done(other)
+            }
+        };
         if cleared {
             return Ok(delay);
         }
