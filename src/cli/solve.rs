@@ -83,14 +83,16 @@ pub fn run_solve(
     };
     opts.sequencer.seed = seed;
     let bar = Bar::new(out.json);
-    let prepared = wcp::prepare(&cell, &opts, &bar)?;
+    // An error leaves no half-drawn bar above its message.
+    let prepared = wcp::prepare(&cell, &opts, &bar).inspect_err(|_| bar.0.finish_and_clear())?;
     let mut written = Ok(());
     if let Some(file) = export_graph {
         let doc = serde_json::to_string_pretty(&prepared.graph.export(&cell))
             .expect("a graph serialises");
         written = written.and(write(file, &doc));
     }
-    let solved = wcp::solve(&cell, &prepared, &opts, &bar)?;
+    let solved =
+        wcp::solve(&cell, &prepared, &opts, &bar).inspect_err(|_| bar.0.finish_and_clear())?;
     bar.0.finish_and_clear();
     let collisions: Vec<&Collision> = solved
         .iterations

@@ -170,7 +170,6 @@ fn ordered_map<S: Serializer, V: Serialize>(pairs: &[(&str, V)], s: S) -> Result
     map.end()
 }
 
-#[allow(clippy::type_complexity)]
 fn ordered_optional_map<S: Serializer, V: Serialize>(
     pairs: &Option<Vec<(&str, V)>>,
     s: S,
