@@ -3,7 +3,7 @@
 
 use super::graph::{check_reachable, WcpGraph};
 use super::moves::MoveTable;
-use super::schedule::{Activity, BuildError, Collision, Delay, MoveCache, Schedule};
+use super::schedule::{Activity, BuildError, Collision, Delay, MoveCache, Schedule, Segment};
 use super::sequencer::{self, Conflict, Instance, SequencerError, SequencerOptions};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckOptions, CheckReport};
@@ -265,15 +265,15 @@ pub fn solve(
             }
             let clock = Instant::now();
             for (x, seg_x, seg_y) in [(a, c.segments.0, seg_b), (b, seg_b, c.segments.0)] {
+                let y = if x == a { b } else { a };
                 let Some(full) = delay_until(
                     &schedule.robots[x].segments,
                     x,
                     seg_x.delayable_move,
-                    seg_y.end,
+                    gone(&schedule.robots[y].segments, &seg_y),
                 ) else {
                     continue;
                 };
-                let y = if x == a { b } else { a };
                 let delay =
                     shortest_delay(cell, &routes, &delays, &mut cache, full, y, seg_x.end, opts)?;
                 let mut candidate = delays.clone();
@@ -365,6 +365,21 @@ fn shortest_delay(
         }
     }
     Ok(full)
+}
+
+/// When a robot has left the place of its segment `seg`: the end of a move, or, for a
+/// robot standing still (working or waiting), the end of the move that takes it away. Waiting
+/// only until it stops standing there would start both robots at once, at the same spot.
+fn gone(segments: &[Segment], seg: &Segment) -> f64 {
+    let next = segments
+        .iter()
+        .skip_while(|s| *s != seg)
+        .nth(1)
+        .filter(|s| matches!(s.activity, Activity::Move { .. }));
+    match (seg.activity, next) {
+        (Activity::Work(_) | Activity::Wait(_), Some(leave)) => leave.end,
+        _ => seg.end,
+    }
 }
 
 /// A wait that makes robot `x` start move `m` when the other robot's activity ends.
