@@ -17,7 +17,7 @@ pub enum MoveFailure {
     /// The planner found no obstacle-free path.
     Plan(PlanError),
     /// An end of the move is too close to an obstacle for the planner's clearance, swept
-    /// over the move's rotation.
+    /// over the move's rotation, and turning apart found no way either.
     Blocked {
         /// `"start"` or `"goal"`.
         end: &'static str,
@@ -42,8 +42,9 @@ impl fmt::Display for MoveFailure {
             MoveFailure::Plan(e) => write!(f, "{e}"),
             MoveFailure::Blocked { end, obstacle } => write!(
                 f,
-                "at the {end} pose the robot, turning as the move requires, would come closer \
-                 than the planning clearance (delta + 2%) to obstacle \"{obstacle}\""
+                "at the {end} pose the robot cannot turn as the move requires without coming \
+                 closer than the planning clearance (delta + 2%) to obstacle \"{obstacle}\", \
+                 and no turning point nearby helps"
             ),
             MoveFailure::Collides { time, obstacle } => write!(
                 f,
