@@ -5,12 +5,15 @@
 //! * `check`: 0 collision-free, 1 collision found.
 //! * `solve`: 0 a collision-free schedule found, 1 none found within the limits.
 //! * `evaluate`: 0 the schedule is collision-free, 1 it collides.
+//! * `generate`: 0 all scenes written.
 
 mod cli;
 
+use clap::builder::TypedValueParser;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use workcell::cell::Kind;
 use workcell::collision::CheckOptions;
 use workcell::motion::BoundKind;
 
@@ -80,6 +83,28 @@ enum Command {
         #[command(flatten)]
         out: cli::solve::Outputs,
     },
+    /// Write deterministic random scenes (same arguments, same bytes) as
+    /// `OUT/<kind>-<seed>-<k>.json` for k in 0..count.
+    ///
+    /// Exit status: 0 written, 2 the folder or a file cannot be written.
+    Generate {
+        /// Family of scenes (see README: "`workcell generate`").
+        #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(
+            Kind::ALL.map(Kind::name)).map(|s| Kind::from_name(&s).expect("a listed kind")))]
+        kind: Kind,
+        /// Seed: the same seed gives the same scenes.
+        #[arg(long)]
+        seed: u64,
+        /// Number of robots (`hall` only; default 10).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+        robots: Option<u64>,
+        /// Number of scenes.
+        #[arg(long, default_value_t = 10)]
+        count: u64,
+        /// Output folder, created if missing.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -136,6 +161,13 @@ fn main() -> ExitCode {
             sequences,
             out,
         } => cli::solve::run_evaluate(&cell, &sequences, &out),
+        Command::Generate {
+            kind,
+            seed,
+            robots,
+            count,
+            out,
+        } => cli::generate::run_generate(kind, seed, robots.map(|r| r as usize), count, &out),
     };
     match result {
         Ok(code) => code,
