@@ -1,7 +1,7 @@
 //! Writing a scene in the contract's format (section 1), readable by `workcell check`.
 
 use crate::collision::Scene;
-use crate::geometry::Vec2;
+use crate::geometry::{Posed, Vec2};
 use crate::motion::Motion;
 use serde_json::{json, Value};
 
@@ -11,14 +11,6 @@ pub fn scene_document(scene: &Scene) -> Value {
     let mut robots = Vec::new();
     let mut obstacles = Vec::new();
     for body in &scene.bodies {
-        let vertices = |f: &dyn Fn(&Vec2) -> Vec2| -> Vec<[f64; 2]> {
-            body.shape
-                .vertices()
-                .iter()
-                .map(f)
-                .map(|v| [v.x, v.y])
-                .collect()
-        };
         match &body.motion {
             Motion::Sampled(trajectory) => {
                 let samples: Vec<Value> = trajectory
@@ -30,15 +22,19 @@ pub fn scene_document(scene: &Scene) -> Value {
                     })
                     .collect();
                 robots.push(
-                    json!({"name": body.name, "shape": vertices(&|v| *v), "trajectory": samples}),
+                    json!({"name": body.name, "shape": points(body.shape.vertices()), "trajectory": samples}),
                 );
             }
             Motion::Fixed(pose) => {
-                let (s, c) = pose.theta.sin_cos();
-                let place = |v: &Vec2| pose.pos + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-                obstacles.push(json!({"name": body.name, "shape": vertices(&place)}));
+                let placed = Posed::new(&body.shape, pose.pos.x, pose.pos.y, pose.theta);
+                let world: Vec<Vec2> = (0..placed.len()).map(|i| placed.vertex(i)).collect();
+                obstacles.push(json!({"name": body.name, "shape": points(&world)}));
             }
         }
     }
     json!({"delta": scene.delta, "robots": robots, "obstacles": obstacles})
+}
+
+fn points(vertices: &[Vec2]) -> Vec<[f64; 2]> {
+    vertices.iter().map(|v| [v.x, v.y]).collect()
 }

@@ -7,7 +7,7 @@
 use super::moves::node_pose;
 use super::schedule::{Activity, Collision, Schedule};
 use crate::cell::Cell;
-use crate::geometry::{ConvexPolygon, Vec2};
+use crate::geometry::{ConvexPolygon, Posed, Vec2};
 use crate::motion::Pose;
 use svg::node::element::{Circle, Group, Line, Polygon, Polyline, Rectangle, Text};
 use svg::Document;
@@ -138,11 +138,8 @@ fn label(text: &str, x: f64, y: f64, colour: &str) -> Text {
 }
 
 fn world(shape: &ConvexPolygon, pose: Pose) -> impl Iterator<Item = Vec2> + '_ {
-    let (s, c) = pose.theta.sin_cos();
-    shape
-        .vertices()
-        .iter()
-        .map(move |v| pose.pos + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y))
+    let placed = Posed::new(shape, pose.pos.x, pose.pos.y, pose.theta);
+    (0..placed.len()).map(move |i| placed.vertex(i))
 }
 
 /// World to picture coordinates: uniform scale, y up.
