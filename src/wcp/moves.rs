@@ -238,9 +238,4 @@ impl MoveTable {
     pub fn travel(&self, r: usize, from: usize, to: usize) -> f64 {
         self.travel[r][from * (self.tasks + 1) + to]
     }
-
-    /// The per-robot matrices, `(tasks + 1)²` row-major, as the sequencer takes them.
-    pub fn matrices(&self) -> &[Vec<f64>] {
-        &self.travel
-    }
 }
