@@ -1,6 +1,6 @@
 //! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
 
-use super::scene_file::{body_named_by, polygon, DEFAULT_DELTA};
+use super::scene_file::{document, polygon, read_file, DEFAULT_DELTA};
 use super::{InputError, MAX_COORDINATE_OVER_DELTA};
 use crate::collision::Body;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
@@ -137,9 +137,7 @@ pub struct LoadedCell {
 
 /// Reads and validates the cell file at `path`.
 pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
-    parse_cell(&text, path)
+    parse_cell(&read_file(path)?, path)
 }
 
 /// Parses and validates a cell document; `file` names it in messages and in [`Cell::file`].
@@ -147,25 +145,9 @@ pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
 /// Beyond the syntax: names unique among robots, obstacles and tasks; limits positive and
 /// finite; every home clear of the obstacles by δ; no task pose inside an obstacle; every task
 /// allowed to at least one robot. Whether a robot can *reach* a task is known only after
-/// planning (see `wcp::build_graph`).
+/// planning (see `wcp::check_reachable`).
 pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
-    let de = &mut serde_json::Deserializer::from_str(text);
-    let raw: RawCell = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
-        let field = match e.path().to_string() {
-            root if root == "." => String::new(),
-            path => path,
-        };
-        let body = body_named_by(text, &field);
-        InputError::new(file, body.as_deref(), field, e.inner())
-    })?;
-    de.end().map_err(|e| {
-        InputError::new(
-            file,
-            None,
-            "",
-            format!("unexpected data after the cell document: {e}"),
-        )
-    })?;
+    let raw: RawCell = document(text, file, "cell")?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
     if !(delta.is_finite() && delta > 0.0) {
         let reason = format!("must be a positive number, got {delta}");

@@ -66,30 +66,12 @@ pub struct LoadedScene {
 /// Reads and validates the scene file at `path`. Whether f64 can check it depends on the
 /// δ finally used: see [`super::check_precision`].
 pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
-    parse_scene(&text, path)
+    parse_scene(&read_file(path)?, path)
 }
 
 /// Parses and validates a scene document; `file` is only used to name it in messages.
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
-    let de = &mut serde_json::Deserializer::from_str(text);
-    let raw: RawScene = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
-        let field = match e.path().to_string() {
-            root if root == "." => String::new(),
-            path => path,
-        };
-        let body = body_named_by(text, &field);
-        InputError::new(file, body.as_deref(), field, e.inner())
-    })?;
-    de.end().map_err(|e| {
-        InputError::new(
-            file,
-            None,
-            "",
-            format!("unexpected data after the scene document: {e}"),
-        )
-    })?;
+    let raw: RawScene = document(text, file, "scene")?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
     if !(delta.is_finite() && delta > 0.0) {
         return Err(InputError::new(
@@ -151,9 +133,38 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     })
 }
 
+/// The text of the file at `path`.
+pub(super) fn read_file(path: &Path) -> Result<String, InputError> {
+    std::fs::read_to_string(path)
+        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))
+}
+
+/// One JSON document of type `T` (a `what`: scene, cell) and nothing after it; a field that
+/// does not fit is named by its path, with the body it belongs to when that can be told.
+pub(super) fn document<T: serde::de::DeserializeOwned>(
+    text: &str,
+    file: &Path,
+    what: &str,
+) -> Result<T, InputError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let raw: T = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+        let field = match e.path().to_string() {
+            root if root == "." => String::new(),
+            path => path,
+        };
+        let body = body_named_by(text, &field);
+        InputError::new(file, body.as_deref(), field, e.inner())
+    })?;
+    de.end().map_err(|e| {
+        let reason = format!("unexpected data after the {what} document: {e}");
+        InputError::new(file, None, "", reason)
+    })?;
+    Ok(raw)
+}
+
 /// The name of the robot, obstacle or task that a field path such as `robots[2].shape` points
 /// into, when the document is valid enough JSON to find it.
-pub(super) fn body_named_by(text: &str, field: &str) -> Option<String> {
+fn body_named_by(text: &str, field: &str) -> Option<String> {
     // Only the names are read, everything else is skipped unparsed: the field that failed
     // (say a number out of range) must not fail this too.
     #[derive(Deserialize)]

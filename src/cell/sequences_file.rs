@@ -26,9 +26,7 @@ pub struct Wait {
 
 /// Reads the sequences at `path` against `cell`: see [`parse_sequences`].
 pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))?;
-    parse_sequences(&text, path, cell)
+    parse_sequences(&super::scene_file::read_file(path)?, path, cell)
 }
 
 /// Parses `{"R1": ["weld-3", "weld-1"], "R2": ["weld-2"]}`, or a whole `solve --json`
