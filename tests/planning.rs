@@ -6,7 +6,6 @@ mod common;
 use common::{ellipse_shape, hull_shape, polygon, Shape};
 use proptest::prelude::*;
 use std::f64::consts::PI;
-use std::time::Instant;
 use workcell::collision::{check, Body, CheckOptions, Scene};
 use workcell::geometry::{ConvexPolygon, Vec2};
 use workcell::motion::{Motion, Pose, Trajectory};
@@ -342,60 +341,6 @@ proptest! {
             // the obstacles never enclose one of them.
             Err(e) => prop_assert!(false, "{e}"),
         }
-    }
-}
-
-/// Timings for the report (run with `--release -- --nocapture`); nothing is asserted.
-#[test]
-fn timings() {
-    let robot = polygon(&[[-0.4, -0.3], [0.5, -0.2], [0.6, 0.2], [-0.3, 0.4]]);
-    let obstacles: Vec<ConvexPolygon> = (0..6)
-        .map(|k| {
-            let (x, y) = (-5.0 + 2.0 * k as f64, if k % 2 == 0 { 1.5 } else { -1.5 });
-            polygon(&[
-                [x - 0.6, y - 1.2],
-                [x + 0.5, y - 1.0],
-                [x + 0.7, y + 1.1],
-                [x - 0.4, y + 1.3],
-            ])
-        })
-        .collect();
-    let opts = PlannerOptions::default();
-    let cases = [
-        (
-            "free, no rotation",
-            pose(-7.0, 4.0, 0.0),
-            pose(7.0, 4.5, 0.0),
-        ),
-        (
-            "free, rotating 2 rad",
-            pose(-7.0, 4.0, 0.0),
-            pose(7.0, 4.5, 2.0),
-        ),
-        (
-            "blocked, no rotation",
-            pose(-7.0, 0.0, 0.0),
-            pose(7.0, 0.0, 0.0),
-        ),
-        (
-            "blocked, rotating 2 rad",
-            pose(-7.0, 0.0, 0.0),
-            pose(7.0, 0.0, 2.0),
-        ),
-    ];
-    for (name, from, to) in cases {
-        let runs = 2000;
-        let start = Instant::now();
-        let mut waypoints = 0;
-        for _ in 0..runs {
-            let planned = plan_move(&robot, &LIMITS, &obstacles, DELTA, from, to, &opts).unwrap();
-            waypoints = planned.path.len();
-        }
-        let each = start.elapsed().as_secs_f64() / runs as f64;
-        println!(
-            "{name:>24}: {:8.2} µs per move ({waypoints} waypoints)",
-            each * 1e6
-        );
     }
 }
 
