@@ -10,12 +10,11 @@
 mod cli;
 
 use clap::builder::TypedValueParser;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use workcell::cell::Kind;
-use workcell::collision::CheckOptions;
-use workcell::motion::BoundKind;
+use workcell::collision::{CheckOptions, Method};
 
 #[derive(Parser)]
 #[command(
@@ -42,10 +41,13 @@ enum Command {
         /// Safety margin δ, replacing the scene's (length units of the scene).
         #[arg(long, value_parser = positive)]
         delta: Option<f64>,
-        /// Motion bound λ: `rigorous` (true bound for any input) or `paper` (eq. 12, from
-        /// the given velocities; can miss collisions when they disagree with the positions).
-        #[arg(long, value_enum, default_value_t = Bound::Rigorous)]
-        bound: Bound,
+        /// How each merged interval is searched: `adaptive` (the paper's bisection with a
+        /// motion bound true for any input), `adaptive-paper` (with the paper's eq. 12, from
+        /// the given velocities: can miss collisions when they disagree with the positions),
+        /// `sampled:STEP` (the distance at the samples and every STEP time units only; proves
+        /// nothing) or `advance` (conservative advancement).
+        #[arg(long, default_value = "adaptive")]
+        method: Method,
         /// Time tolerance of the first contact (time units; default 1e-6 of the horizon).
         #[arg(long, value_parser = positive)]
         time_tol: Option<f64>,
@@ -107,12 +109,6 @@ enum Command {
     },
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum Bound {
-    Rigorous,
-    Paper,
-}
-
 fn positive(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
@@ -127,7 +123,7 @@ fn main() -> ExitCode {
             scene,
             json,
             delta,
-            bound,
+            method,
             time_tol,
             per_pair,
         } => {
@@ -135,10 +131,7 @@ fn main() -> ExitCode {
                 delta,
                 time_tol,
                 per_pair,
-                bound: match bound {
-                    Bound::Rigorous => BoundKind::Rigorous,
-                    Bound::Paper => BoundKind::Paper,
-                },
+                method,
                 ..CheckOptions::default()
             };
             cli::check::run_check(&scene, json, &opts)

@@ -227,7 +227,12 @@ fn missing_file_and_bad_options_exit_2() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("/nonexistent/scene.json"));
     let path = scene_file("options-bad", &two_squares(3.0));
-    for bad in [["--delta", "-1"], ["--time-tol", "0"], ["--bound", "fast"]] {
+    for bad in [
+        ["--delta", "-1"],
+        ["--time-tol", "0"],
+        ["--method", "fast"],
+        ["--method", "sampled:0"],
+    ] {
         let o = workcell(&["check", path.to_str().unwrap(), bad[0], bad[1]]);
         assert_eq!(o.status.code(), Some(2), "{bad:?}");
     }
@@ -252,8 +257,8 @@ fn shipped_cells_give_their_expected_verdicts() {
     let o = workcell(&[
         "check",
         cells.join("bad-velocities.json").to_str().unwrap(),
-        "--bound",
-        "paper",
+        "--method",
+        "adaptive-paper",
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }

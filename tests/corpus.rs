@@ -7,8 +7,7 @@
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use workcell::cell::load_scene;
-use workcell::collision::{check, CheckOptions, CheckReport};
-use workcell::motion::BoundKind;
+use workcell::collision::{check, CheckOptions, CheckReport, Method};
 
 #[derive(Deserialize)]
 struct Truth {
@@ -38,12 +37,12 @@ fn truths(dir: &Path) -> Vec<Truth> {
         .collect()
 }
 
-fn run(dir: &Path, t: &Truth, bound: BoundKind) -> CheckReport {
+fn run(dir: &Path, t: &Truth, method: Method) -> CheckReport {
     let loaded = load_scene(&dir.join(&t.file)).unwrap_or_else(|e| panic!("{e}"));
     check(
         &loaded.scene,
         &CheckOptions {
-            bound,
+            method,
             ..CheckOptions::default()
         },
     )
@@ -80,7 +79,7 @@ fn agrees_with_every_corpus_scene() {
     let mut failures = Vec::new();
     for dir in corpora() {
         for t in truths(&dir) {
-            let r = run(&dir, &t, BoundKind::Rigorous);
+            let r = run(&dir, &t, Method::DEFAULT);
             if let Some(why) = disagreement(&t, &r) {
                 failures.push(format!(
                     "{}: {} ({}): {why}",
@@ -136,7 +135,7 @@ fn the_papers_velocity_bound_misses_an_inconsistent_velocity_collision() {
     let missed: Vec<String> = truths(dir)
         .iter()
         .filter(|t| t.collision && t.category == "g-bad-velocities")
-        .filter(|t| !run(dir, t, BoundKind::Paper).collision)
+        .filter(|t| !run(dir, t, Method::Adaptive(workcell::motion::BoundKind::Paper)).collision)
         .map(|t| t.file.clone())
         .collect();
     assert!(
@@ -159,7 +158,7 @@ fn result_does_not_depend_on_the_number_of_threads() {
                     .num_threads(n)
                     .build()
                     .unwrap()
-                    .install(|| run(dir, t, BoundKind::Rigorous))
+                    .install(|| run(dir, t, Method::DEFAULT))
             })
             .collect();
         assert_eq!(reports[0], reports[1], "{}", t.file);

@@ -1,9 +1,8 @@
 //! Checking a whole scene: every pair, in parallel, earliest contact first.
 
 use super::pair::{check_pair, PairSettings, SharedLimit};
-use super::{Scene, Stats};
+use super::{Method, Scene, Stats};
 use crate::geometry::WalkTolerances;
-use crate::motion::BoundKind;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -15,8 +14,8 @@ const PARALLEL_MIN_PAIRS: usize = 4;
 pub struct CheckOptions {
     /// δ to use instead of the scene's, in the scene's length unit.
     pub delta: Option<f64>,
-    /// Which motion bound λ.
-    pub bound: BoundKind,
+    /// How each merged interval is searched (`--method`).
+    pub method: Method,
     /// Absolute time tolerance of the first contact, in the scene's time unit; default
     /// 10⁻⁶ of the horizon's length.
     pub time_tol: Option<f64>,
@@ -34,7 +33,7 @@ impl Default for CheckOptions {
     fn default() -> Self {
         CheckOptions {
             delta: None,
-            bound: BoundKind::Rigorous,
+            method: Method::DEFAULT,
             time_tol: None,
             grazing_tol: 1e-4,
             walk: WalkTolerances::default(),
@@ -64,10 +63,12 @@ pub struct CheckReport {
     pub collision: bool,
     /// The earliest contact, if any.
     pub first_contact: Option<Contact>,
-    /// End of the prefix of the horizon certified free.
+    /// End of the prefix of the horizon certified free (with a method that proves nothing,
+    /// the last look found free before the contact).
     pub safe_until: f64,
-    /// Whether the whole report is proven. False when some interval examined only grazes δ
-    /// or could not be resolved (see [`Stats`]): then a verdict of free, or the prefix before
+    /// Whether the whole report is proven. False with a method that proves nothing
+    /// ([`Method::proves_free`]), and when some interval examined only grazes δ or could not
+    /// be resolved (see [`Stats`]): then a verdict of free, or the prefix before
     /// `safe_until`, holds only down to δ·(1 − grazing_tol). A reported contact itself is
     /// always real (it has a witness).
     pub certified: bool,
@@ -114,7 +115,8 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         delta,
         grazing_tol: opts.grazing_tol * delta,
         time_tol,
-        bound: opts.bound,
+        method: opts.method,
+        start: horizon.0,
         walk: opts.walk,
     };
     let pairs = scene.pairs();
@@ -164,7 +166,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .fold(horizon.1, f64::min);
     CheckReport {
         collision: first.is_some(),
-        certified: stats.grazing == 0 && stats.unresolved == 0,
+        certified: opts.method.proves_free() && stats.grazing == 0 && stats.unresolved == 0,
         first_contact: first.map(|(c, &p)| Contact {
             time: c.time,
             bodies: names(p),

@@ -6,12 +6,17 @@
 //! while they are farther apart than δ, the exact polygon distance of the
 //! closest-feature walk otherwise. All pairs run in parallel; the earliest contact wins.
 
+mod adaptive;
+mod advance;
 mod check;
 mod eta;
+mod method;
 mod pair;
+mod sampled;
 mod scene;
 mod stats;
 
 pub use check::{check, CheckOptions, CheckReport, Contact, PairStats};
+pub use method::Method;
 pub use scene::{Body, Scene};
 pub use stats::Stats;

@@ -22,6 +22,9 @@ pub struct Stats {
     /// Intervals shorter than the time tolerance, with no witness, shown to stay above
     /// δ·(1 − grazing allowance) but not above δ: the pair grazes δ there.
     pub grazing: u64,
+    /// Looks inside merged intervals by the sampled and advance methods (η at a time chosen
+    /// by the method rather than by bisection).
+    pub looks: u64,
     /// Intervals that floating point cannot split further and that are neither certified
     /// nor hold a witness. Only coordinates far too large for δ cause it (the scene loader
     /// refuses them); a report with any is not a proof.
@@ -38,5 +41,6 @@ impl AddAssign for Stats {
         self.unresolved += o.unresolved;
         self.convexity_certificates += o.convexity_certificates;
         self.grazing += o.grazing;
+        self.looks += o.looks;
     }
 }

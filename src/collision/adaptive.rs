@@ -1,0 +1,124 @@
+//! Table 1 of Feyeux & Landry on one merged interval: certify or bisect.
+
+use super::eta::{Eta, Probe};
+use super::pair::{PairSettings, Span};
+use super::Stats;
+use crate::motion::{lambda, BoundKind};
+
+/// A lower bound of the distance over [l, r] from its convexity (second certificate).
+///
+/// Under the relative translation w of the interval, the disc gap |G_b − G_a| − Ra − Rb is
+/// convex in time whatever the bodies' rotations, and so is the exact distance of the two
+/// bodies frozen in their orientation at either end. A convex function lies above its
+/// tangents; the tangent's slope is the separation direction times w. Rotation moves no
+/// point farther than ρ = Ra·|Δθa| + Rb·|Δθb| over the interval, which tilts the exact
+/// tangents by ρ. This certifies in one step bodies that glide past each other close to δ,
+/// or spin far from everything, where the first-order condition needs ever finer splits.
+fn convexity_bound(l: &Probe, r: &Probe, radii: (f64, f64), feature_tol: f64) -> f64 {
+    let w = (r.pose_b.pos - l.pose_b.pos) - (r.pose_a.pos - l.pose_a.pos);
+    let (f0, n0, f1, n1, rho) = if l.exact && r.exact {
+        let rho = radii.0 * (r.pose_a.theta - l.pose_a.theta).abs()
+            + radii.1 * (r.pose_b.theta - l.pose_b.theta).abs();
+        (l.eta, l.normal, r.eta, r.normal, rho)
+    } else {
+        let disc = |p: &Probe| {
+            let c = p.pose_b.pos - p.pose_a.pos;
+            (c.norm() - radii.0 - radii.1, c / c.norm())
+        };
+        let ((f0, n0), (f1, n1)) = (disc(l), disc(r));
+        (f0, n0, f1, n1, 0.0)
+    };
+    let (s0, s1) = (n0.dot(&w) - rho, n1.dot(&w) + rho);
+    let above_tangents = |u: f64| (f0 + s0 * u).max(f1 - s1 * (1.0 - u));
+    let mut low = above_tangents(0.0).min(above_tangents(1.0));
+    let crossing = (f1 - s1 - f0) / (s0 - s1);
+    if (0.0..=1.0).contains(&crossing) {
+        low = low.min(above_tangents(crossing));
+    }
+    // The walk's separation direction is exact to its Voronoi slack (an angle).
+    low - 10.0 * feature_tol * w.norm()
+}
+
+/// Table 1 on one merged interval, both ends evaluated and the left one known free.
+///
+/// Depth-first, left half first, so the first witness (η < δ, an exact distance) found
+/// after the certified prefix is the earliest contact up to `time_tol`. Returns the witness
+/// and the end of the certified prefix, or `Ok` when the whole interval is certified.
+pub(super) fn search(
+    eta: &mut Eta,
+    span: &Span,
+    ends: (Probe, Probe),
+    bound: BoundKind,
+    s: &PairSettings,
+    stack: &mut Vec<(Probe, Probe)>,
+    stats: &mut Stats,
+) -> Result<(), (Probe, f64)> {
+    let (a, b) = (eta.a, eta.b);
+    let duration = span.t1 - span.t0;
+    let radii = (a.shape.radius(), b.shape.radius());
+    stack.clear();
+    stack.push(ends);
+    while let Some((l, r)) = stack.pop() {
+        let mid = 0.5 * (l.u + r.u);
+        let resolved = !(l.u < mid && mid < r.u);
+        if l.eta.is_nan() || r.eta.is_nan() {
+            // No finite geometry to reason about; the CLI turns this into an input error.
+            stats.unresolved += 1;
+            continue;
+        }
+        if r.eta < s.delta {
+            // A contact lies in (l, r]: bisect until the interval is within tolerance.
+            if (r.u - l.u) * duration <= s.time_tol || resolved {
+                return Err((r, l.t));
+            }
+        } else {
+            // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)
+            // ≥ (η(l) + η(r) − λ) / 2, so λ1 + λ2 < η(l) + η(r) − 2δ keeps the pair δ apart.
+            let lam = lambda(
+                bound,
+                &a.motion,
+                a.shape.radius(),
+                (l.t, &l.pose_a),
+                (r.t, &r.pose_a),
+            ) + lambda(
+                bound,
+                &b.motion,
+                b.shape.radius(),
+                (l.t, &l.pose_b),
+                (r.t, &r.pose_b),
+            );
+            let first_order = (l.eta + r.eta - lam) / 2.0;
+            if first_order >= s.delta {
+                continue;
+            }
+            // The paper's method has only the first-order certificate.
+            let low = match bound {
+                BoundKind::Rigorous => {
+                    first_order.max(convexity_bound(&l, &r, radii, s.walk.feature_tol))
+                }
+                BoundKind::Paper => first_order,
+            };
+            if low >= s.delta {
+                stats.convexity_certificates += 1;
+                continue;
+            }
+            if (r.u - l.u) * duration <= s.time_tol && low >= s.delta - s.grazing_tol {
+                // Within the time tolerance and within the allowance of δ, with no witness:
+                // a graze. Splitting on would cost ever more where a body turns at exactly δ.
+                stats.grazing += 1;
+                continue;
+            }
+            if resolved {
+                // One step of f64 moves a body farther than the allowance: coordinates far too
+                // large for δ, which `cell::check_precision` refuses.
+                stats.unresolved += 1;
+                continue;
+            }
+        }
+        stats.bisections += 1;
+        let m = eta.at(span.time(mid), span.poses(mid), stats);
+        stack.push((Probe { u: mid, ..m }, r));
+        stack.push((l, Probe { u: mid, ..m }));
+    }
+    Ok(())
+}
