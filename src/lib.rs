@@ -6,7 +6,10 @@
 //! * [`geometry`]: convex polygons and their exact distance (2-D Lin-Canny walk);
 //! * [`motion`]: trajectories, interpolation and motion bounds λ;
 //! * [`collision`]: the adaptive checker of Feyeux & Landry (2013);
-//! * [`cell`]: the model's files and their validation.
+//! * [`cell`]: the model's files and their validation;
+//! * [`planning`]: point-to-point moves around the obstacles;
+//! * [`wcp`]: the work-cell graph, the sequencer and the collision feedback loop;
+//! * [`compare`]: the checking methods against each other and the parry peer.
 //!
 //! ```
 //! use workcell::{cell, collision};
@@ -26,6 +29,7 @@
 
 pub mod cell;
 pub mod collision;
+pub mod compare;
 pub mod geometry;
 pub mod motion;
 pub mod planning;

@@ -1,5 +1,6 @@
 //! The commands, one file each.
 
 pub mod check;
+pub mod compare;
 pub mod generate;
 pub mod solve;

@@ -12,11 +12,15 @@ mod check;
 mod eta;
 mod method;
 mod pair;
+#[cfg(feature = "parry-peer")]
+mod peer;
 mod sampled;
 mod scene;
 mod stats;
 
 pub use check::{check, CheckOptions, CheckReport, Contact, PairStats};
 pub use method::Method;
+#[cfg(feature = "parry-peer")]
+pub use peer::{check_with_parry, PeerReport};
 pub use scene::{Body, Scene};
 pub use stats::Stats;

@@ -87,7 +87,7 @@ impl SharedLimit {
 
 /// Union of both bodies' sample times within the horizon, with the horizon's ends: on each
 /// interval between consecutive grid times both poses are linear in time.
-fn merged_grid(a: &Body, b: &Body, (t0, t1): (f64, f64)) -> Vec<f64> {
+pub(super) fn merged_grid(a: &Body, b: &Body, (t0, t1): (f64, f64)) -> Vec<f64> {
     let mut grid: Vec<f64> = a
         .motion
         .times()

@@ -1,0 +1,176 @@
+//! The trade-off at a glance: time per check (log) against collisions missed, one point per
+//! method and sampling step.
+
+use super::Comparison;
+use svg::node::element::{Circle, Group, Line, Polyline, Rectangle, Text};
+use svg::Document;
+
+const WIDTH: f64 = 760.0;
+const HEIGHT: f64 = 520.0;
+/// Plot area inside the margins.
+const LEFT: f64 = 70.0;
+const RIGHT: f64 = 680.0;
+const TOP: f64 = 110.0;
+const BOTTOM: f64 = 460.0;
+
+/// The chart as an SVG document.
+pub fn chart(c: &Comparison) -> String {
+    let points: Vec<(&str, f64, usize, usize)> = c
+        .methods
+        .iter()
+        .filter(|m| m.median_us.is_finite() && m.median_us > 0.0)
+        .map(|m| (m.method.as_str(), m.median_us, m.missed, m.invented))
+        .collect();
+    // Whole decades around the times; missed from 0 to at least 1.
+    let (lo, hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.1.log10()), hi.max(p.1.log10()))
+        });
+    let (lo, hi) = if lo.is_finite() {
+        (lo.floor(), hi.ceil().max(lo.floor() + 1.0))
+    } else {
+        (0.0, 1.0)
+    };
+    let top_missed = points.iter().map(|p| p.2).max().unwrap_or(0).max(1) as f64;
+    let x = |us: f64| LEFT + (us.log10() - lo) / (hi - lo) * (RIGHT - LEFT);
+    let y = |missed: f64| BOTTOM - missed / top_missed * (BOTTOM - TOP);
+
+    let mut doc = Document::new()
+        .set("viewBox", (0.0, 0.0, WIDTH, HEIGHT))
+        .set("width", WIDTH)
+        .set("height", HEIGHT)
+        .set("font-family", "sans-serif")
+        .set("font-size", 12)
+        .add(
+            Rectangle::new()
+                .set("width", "100%")
+                .set("height", "100%")
+                .set("fill", "white"),
+        )
+        .add(text(
+            WIDTH / 2.0,
+            24.0,
+            &format!(
+                "{} scenes ({} colliding): time per check against collisions missed",
+                c.scenes, c.colliding
+            ),
+            "middle",
+        ));
+    let mut axes = Group::new().set("stroke", "#444").set("stroke-width", 1);
+    axes = axes
+        .add(line(LEFT, BOTTOM, RIGHT, BOTTOM))
+        .add(line(LEFT, TOP, LEFT, BOTTOM));
+    doc = doc.add(axes);
+    for decade in lo as i32..=hi as i32 {
+        let px = x(10f64.powi(decade));
+        doc = doc
+            .add(line(px, BOTTOM, px, TOP).set("stroke", "#e0e0e0"))
+            .add(text(px, BOTTOM + 18.0, &decade_label(decade), "middle"));
+    }
+    let step = (top_missed / 5.0).ceil().max(1.0);
+    let mut m = 0.0;
+    while m <= top_missed {
+        doc = doc
+            .add(line(LEFT, y(m), RIGHT, y(m)).set("stroke", "#e0e0e0"))
+            .add(text(LEFT - 8.0, y(m) + 4.0, &format!("{m}"), "end"));
+        m += step;
+    }
+    doc = doc
+        .add(text(
+            (LEFT + RIGHT) / 2.0,
+            BOTTOM + 40.0,
+            "median time per whole-scene check (µs, log scale)",
+            "middle",
+        ))
+        .add(text(0.0, 0.0, "collisions missed (scenes)", "middle").set(
+            "transform",
+            format!("translate(20 {}) rotate(-90)", (TOP + BOTTOM) / 2.0),
+        ));
+    // The sampling steps as one curve: finer steps cost more and miss less.
+    let sampled: Vec<String> = points
+        .iter()
+        .filter(|p| p.0.starts_with("sampled:"))
+        .map(|p| format!("{},{}", x(p.1), y(p.2 as f64)))
+        .collect();
+    if sampled.len() > 1 {
+        doc = doc.add(
+            Polyline::new()
+                .set("points", sampled.join(" "))
+                .set("fill", "none")
+                .set("stroke", colour("sampled"))
+                .set("stroke-dasharray", "4 3"),
+        );
+    }
+    // Labels slant up and to the right; a point close to one already labelled at the same
+    // height slants steeper, so that neighbours stay legible.
+    let mut placed: Vec<(f64, f64)> = Vec::new();
+    let mut by_x: Vec<_> = points.iter().collect();
+    by_x.sort_by(|a, b| a.1.total_cmp(&b.1));
+    for &&(name, us, missed, invented) in &by_x {
+        let (px, py) = (x(us), y(missed as f64));
+        let crowded = placed
+            .iter()
+            .filter(|(qx, qy)| (px - qx).abs() < 40.0 && (py - qy).abs() < 12.0)
+            .count();
+        placed.push((px, py));
+        let angle = [-30.0, -65.0, -85.0][crowded.min(2)];
+        let label = if invented > 0 {
+            format!("{name} ({invented} invented)")
+        } else {
+            name.to_string()
+        };
+        doc = doc
+            .add(
+                Circle::new()
+                    .set("cx", px)
+                    .set("cy", py)
+                    .set("r", 5)
+                    .set("fill", colour(name))
+                    .set("stroke", if invented > 0 { "#d00" } else { "none" })
+                    .set("stroke-width", 2),
+            )
+            .add(
+                text(0.0, 0.0, &label, "start")
+                    .set("fill", colour(name))
+                    .set(
+                        "transform",
+                        format!("translate({} {}) rotate({angle})", px + 7.0, py - 7.0),
+                    ),
+            );
+    }
+    doc.to_string()
+}
+
+fn colour(method: &str) -> &'static str {
+    match method {
+        "adaptive" => "#0072B2",
+        "adaptive-paper" => "#56B4E9",
+        "advance" => "#009E73",
+        "parry" => "#000000",
+        _ => "#D55E00",
+    }
+}
+
+fn decade_label(decade: i32) -> String {
+    if (0..=6).contains(&decade) {
+        format!("{}", 10u64.pow(decade as u32))
+    } else {
+        format!("1e{decade}")
+    }
+}
+
+fn line(x1: f64, y1: f64, x2: f64, y2: f64) -> Line {
+    Line::new()
+        .set("x1", x1)
+        .set("y1", y1)
+        .set("x2", x2)
+        .set("y2", y2)
+}
+
+fn text(x: f64, y: f64, content: &str, anchor: &str) -> Text {
+    Text::new(content)
+        .set("x", x)
+        .set("y", y)
+        .set("text-anchor", anchor)
+}
