@@ -1,0 +1,44 @@
+//! Pair checks: every method and the parry peer on the same generated scenes, kind by kind.
+//!
+//! `cargo bench --features parry-peer --bench methods`. Each measurement is one check of each
+//! of the kind's ten scenes (seed 1, halls of 10 robots), so time per check is a tenth of it.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use workcell::cell::{generate_scene, Kind};
+use workcell::collision::{check, check_with_parry, CheckOptions, Method, Scene};
+
+fn methods(c: &mut Criterion) {
+    let ours = [
+        Method::DEFAULT,
+        "adaptive-paper".parse().unwrap(),
+        Method::Advance,
+        Method::Sampled { step: 0.01 },
+    ];
+    for kind in Kind::ALL {
+        let scenes: Vec<Scene> = (0..10).map(|k| generate_scene(kind, 1, k, 10)).collect();
+        let mut group = c.benchmark_group(format!("methods/{}", kind.name()));
+        for method in ours {
+            let opts = CheckOptions {
+                method,
+                ..CheckOptions::default()
+            };
+            group.bench_function(method.to_string(), |b| {
+                b.iter(|| scenes.iter().filter(|s| check(s, &opts).collision).count())
+            });
+        }
+        let pairs: Vec<_> = scenes.iter().map(|s| s.pairs()).collect();
+        group.bench_function("parry", |b| {
+            b.iter(|| {
+                scenes
+                    .iter()
+                    .zip(&pairs)
+                    .filter(|(s, p)| check_with_parry(s, p, s.delta).first_contact.is_some())
+                    .count()
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, methods);
+criterion_main!(benches);
