@@ -10,7 +10,6 @@
 
 mod cli;
 
-use clap::builder::TypedValueParser;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -112,10 +111,10 @@ enum Command {
     ///
     /// Exit status: 0 written, 2 the folder or a file cannot be written.
     Generate {
-        /// Family of scenes (see README: "`workcell generate`").
+        /// Family of scenes (see README: "`workcell generate`"), or `all` for every family.
         #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(
-            Kind::ALL.map(Kind::name)).map(|s| Kind::from_name(&s).expect("a listed kind")))]
-        kind: Kind,
+            Kind::ALL.map(Kind::name).into_iter().chain(["all"])))]
+        kind: String,
         /// Seed: the same seed gives the same scenes.
         #[arg(long)]
         seed: u64,
@@ -182,7 +181,15 @@ fn main() -> ExitCode {
             robots,
             count,
             out,
-        } => cli::generate::run_generate(kind, seed, robots.map(|r| r as usize), count, &out),
+        } => cli::generate::run_generate(
+            Kind::from_name(&kind)
+                .as_ref()
+                .map_or(&Kind::ALL[..], std::slice::from_ref),
+            seed,
+            robots.map(|r| r as usize),
+            count,
+            &out,
+        ),
         Command::Compare {
             inputs,
             svg,

@@ -219,6 +219,30 @@ fn cli_writes_files_and_prints_them() {
     );
     assert_eq!(out.status.code(), Some(0));
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 10);
+    // `all`: every kind, with --robots for the halls.
+    let dir = temp_dir("cli-all");
+    let out = workcell(&[
+        "generate",
+        "--kind",
+        "all",
+        "--seed",
+        "4",
+        "--count",
+        "2",
+        "--robots",
+        "5",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        2 * Kind::ALL.len()
+    );
+    for kind in Kind::ALL {
+        let file = dir.join(format!("{}-4-1.json", kind.name()));
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), text(kind, 4, 1, 5));
+    }
 }
 
 #[test]

@@ -5,10 +5,10 @@ use std::path::Path;
 use std::process::ExitCode;
 use workcell::cell::{generate_scene, scene_document, scene_file_name, InputError, Kind};
 
-/// Writes `DIR/<kind>-<seed>-<k>.json` for k in 0..count, creating `out` if missing, and
-/// prints one line per file. Same arguments, same bytes.
+/// Writes `DIR/<kind>-<seed>-<k>.json` for each kind and k in 0..count, creating `out` if
+/// missing, and prints one line per file. Same arguments, same bytes.
 pub fn run_generate(
-    kind: Kind,
+    kinds: &[Kind],
     seed: u64,
     robots: Option<usize>,
     count: u64,
@@ -20,19 +20,24 @@ pub fn run_generate(
         field: String::new(),
         reason,
     };
-    if robots.is_some() && kind != Kind::Hall {
-        return Err(fail(
-            out,
-            format!(
-                "--robots applies only to --kind hall, not to {}",
-                kind.name()
-            ),
-        ));
+    if let (Some(_), [kind]) = (robots, kinds) {
+        if *kind != Kind::Hall {
+            return Err(fail(
+                out,
+                format!(
+                    "--robots applies only to --kind hall, not to {}",
+                    kind.name()
+                ),
+            ));
+        }
     }
     std::fs::create_dir_all(out)
         .map_err(|e| fail(out, format!("cannot create the output folder: {e}")))?;
     let mut stdout = std::io::stdout().lock();
-    for k in 0..count {
+    for (&kind, k) in kinds
+        .iter()
+        .flat_map(|kind| (0..count).map(move |k| (kind, k)))
+    {
         let scene = generate_scene(kind, seed, k, robots.unwrap_or(10));
         let text = serde_json::to_string_pretty(&scene_document(&scene))
             .expect("a scene serialises")
