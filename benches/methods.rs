@@ -5,7 +5,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use workcell::cell::{generate_scene, Kind};
-use workcell::collision::{check, check_with_parry, CheckOptions, Method, Scene};
+use workcell::collision::{candidate_pairs, check, check_with_parry, CheckOptions, Method, Scene};
 
 fn methods(c: &mut Criterion) {
     let ours = [
@@ -26,7 +26,8 @@ fn methods(c: &mut Criterion) {
                 b.iter(|| scenes.iter().filter(|s| check(s, &opts).collision).count())
             });
         }
-        let pairs: Vec<_> = scenes.iter().map(|s| s.pairs()).collect();
+        // The same broad phase for both: the peer is compared pair check against pair check.
+        let pairs: Vec<_> = scenes.iter().map(|s| candidate_pairs(s, s.delta)).collect();
         group.bench_function("parry", |b| {
             b.iter(|| {
                 scenes

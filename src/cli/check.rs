@@ -100,8 +100,9 @@ fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> S
         ));
     }
     line(format!(
-        "{} pairs checked in {:.3} ms on {} threads",
+        "{} pairs checked ({} more pruned by the broad phase) in {:.3} ms on {} threads",
         r.pairs,
+        r.pairs_pruned,
         elapsed.as_secs_f64() * 1e3,
         threads
     ));

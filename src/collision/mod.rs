@@ -4,10 +4,13 @@
 //! Schwarzer-Saha-Latombe condition λ1 + λ2 < η(tl) + η(tu) − 2δ certifies the interval,
 //! or the interval is bisected (the paper's Table 1). η is the gap between bounding discs
 //! while they are farther apart than δ, the exact polygon distance of the
-//! closest-feature walk otherwise. All pairs run in parallel; the earliest contact wins.
+//! closest-feature walk otherwise. A space-time broad phase first drops the pairs whose swept
+//! bounding boxes stay δ apart (so N bodies do not cost N² pair checks); the remaining pairs
+//! run in parallel, and the earliest contact wins.
 
 mod adaptive;
 mod advance;
+mod broad_phase;
 mod check;
 mod eta;
 mod method;
@@ -18,6 +21,7 @@ mod sampled;
 mod scene;
 mod stats;
 
+pub use broad_phase::candidate_pairs;
 pub use check::{check, CheckOptions, CheckReport, Contact, PairStats};
 pub use method::Method;
 #[cfg(feature = "parry-peer")]

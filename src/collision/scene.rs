@@ -69,4 +69,11 @@ impl Scene {
         }
         pairs
     }
+
+    /// The number of pairs of [`Scene::pairs`], without listing them.
+    pub fn pair_count(&self) -> usize {
+        let robots = self.bodies.iter().filter(|b| b.is_robot()).count();
+        let obstacles = self.bodies.len() - robots;
+        robots * robots.saturating_sub(1) / 2 + robots * obstacles
+    }
 }

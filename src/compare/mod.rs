@@ -232,7 +232,7 @@ fn run(scene: &Scene, contender: Contender) -> Option<Verdict> {
 #[cfg(feature = "parry-peer")]
 fn parry(scene: &Scene) -> Option<Verdict> {
     // The same candidate pairs as our checker: both get the broad phase.
-    let pairs = scene.pairs();
+    let pairs = crate::collision::candidate_pairs(scene, scene.delta);
     let report = crate::collision::check_with_parry(scene, &pairs, scene.delta);
     report.unsupported.is_empty().then_some(Verdict {
         contact: report.first_contact,
