@@ -11,6 +11,10 @@ use serde::Serialize;
 /// Scenes with fewer pairs are checked on the calling thread.
 const PARALLEL_MIN_PAIRS: usize = 4;
 
+/// Scenes with fewer pairs skip the broad phase: its boxes cost about as much as checking a
+/// pair that stays apart (a few disc gaps per merged interval), so it only pays with many.
+const BROAD_PHASE_MIN_PAIRS: usize = 16;
+
 /// How to check a scene.
 #[derive(Clone, Copy, Debug)]
 pub struct CheckOptions {
@@ -107,8 +111,8 @@ pub struct PairStats {
 
 /// Checks every robot-robot and robot-obstacle pair of `scene` over its horizon.
 ///
-/// The broad phase ([`super::candidate_pairs`]) first drops the pairs whose swept bounding
-/// boxes stay δ apart; only the others go through the adaptive check. Dropped pairs could
+/// With 16 pairs or more, the broad phase ([`super::candidate_pairs`])
+/// first drops the pairs whose swept bounding boxes stay δ apart; only the others go through the adaptive check. Dropped pairs could
 /// never give a contact, so the verdict, the first contact and `safe_until` are those of
 /// checking all pairs; the counters, and so `certified`, only cover the pairs checked (a
 /// pruned pair's distance is proven ≥ δ, grazes included).
@@ -132,7 +136,11 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         start: horizon.0,
         walk: opts.walk,
     };
-    let pairs = candidate_pairs(scene, delta);
+    let pairs = if scene.pair_count() < BROAD_PHASE_MIN_PAIRS {
+        scene.pairs()
+    } else {
+        candidate_pairs(scene, delta)
+    };
     let limit = SharedLimit::new();
     let run = |&(i, j): &(usize, usize)| {
         check_pair(
