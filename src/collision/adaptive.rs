@@ -3,7 +3,7 @@
 use super::eta::{Eta, Probe};
 use super::pair::{PairSettings, Span};
 use super::Stats;
-use crate::motion::{lambda, BoundKind};
+use crate::motion::BoundKind;
 
 /// A lower bound of the distance over [l, r] from its convexity (second certificate).
 ///
@@ -74,19 +74,7 @@ pub(super) fn search(
         } else {
             // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)
             // ≥ (η(l) + η(r) − λ) / 2, so λ1 + λ2 < η(l) + η(r) − 2δ keeps the pair δ apart.
-            let lam = lambda(
-                bound,
-                &a.motion,
-                a.shape.radius(),
-                (l.t, &l.pose_a),
-                (r.t, &r.pose_a),
-            ) + lambda(
-                bound,
-                &b.motion,
-                b.shape.radius(),
-                (l.t, &l.pose_b),
-                (r.t, &r.pose_b),
-            );
+            let lam = eta.lambda(bound, &l, &r);
             let first_order = (l.eta + r.eta - lam) / 2.0;
             if first_order >= s.delta {
                 continue;

@@ -3,7 +3,7 @@
 use super::eta::{Eta, Probe};
 use super::pair::{PairSettings, Span};
 use super::Stats;
-use crate::motion::{lambda, BoundKind};
+use crate::motion::BoundKind;
 
 /// From the free left end, steps forward by (η − δ) / λ', λ' bounding how far the pair can
 /// close in per unit of the interval: the pose is linear on it, so over a fraction u of the
@@ -16,20 +16,7 @@ pub(super) fn search(
     s: &PairSettings,
     stats: &mut Stats,
 ) -> Result<(), (Probe, f64)> {
-    let (a, b) = (eta.a, eta.b);
-    let closing = lambda(
-        BoundKind::Rigorous,
-        &a.motion,
-        a.shape.radius(),
-        (span.t0, &span.a.0),
-        (span.t1, &span.a.1),
-    ) + lambda(
-        BoundKind::Rigorous,
-        &b.motion,
-        b.shape.radius(),
-        (span.t0, &span.b.0),
-        (span.t1, &span.b.1),
-    );
+    let closing = eta.lambda(BoundKind::Rigorous, &left, &right);
     // Box2D's target slop, as a time: no step is shorter than the time tolerance, or a pair
     // gliding at δ would be advanced forever.
     let min_step = s.time_tol / (span.t1 - span.t0);

@@ -111,8 +111,8 @@ pub struct PairStats {
 
 /// Checks every robot-robot and robot-obstacle pair of `scene` over its horizon.
 ///
-/// With 16 pairs or more, the broad phase ([`super::candidate_pairs`])
-/// first drops the pairs whose swept bounding boxes stay δ apart; only the others go through the adaptive check. Dropped pairs could
+/// With 16 pairs or more, the broad phase ([`super::candidate_pairs`]) first drops the pairs
+/// whose swept bounding boxes stay δ apart; only the others are checked. Dropped pairs could
 /// never give a contact, so the verdict, the first contact and `safe_until` are those of
 /// checking all pairs; the counters, and so `certified`, only cover the pairs checked (a
 /// pruned pair's distance is proven ≥ δ, grazes included).
@@ -136,7 +136,8 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         start: horizon.0,
         walk: opts.walk,
     };
-    let pairs = if scene.pair_count() < BROAD_PHASE_MIN_PAIRS {
+    let all_pairs = scene.pair_count();
+    let pairs = if all_pairs < BROAD_PHASE_MIN_PAIRS {
         scene.pairs()
     } else {
         candidate_pairs(scene, delta)
@@ -200,7 +201,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         delta,
         time_tol,
         pairs: pairs.len(),
-        pairs_pruned: scene.pair_count() - pairs.len(),
+        pairs_pruned: all_pairs - pairs.len(),
         pair_stats,
     }
 }

@@ -2,7 +2,7 @@
 
 use super::{Body, Stats};
 use crate::geometry::{closest_features, FeaturePair, Posed, Vec2, WalkTolerances};
-use crate::motion::Pose;
+use crate::motion::{lambda, BoundKind, Pose};
 
 /// A pair probed at one time: both poses and η.
 #[derive(Clone, Copy, Debug)]
@@ -44,6 +44,14 @@ impl<'s> Eta<'s> {
     /// Sum of the two bounding-disc radii (eq. 13).
     pub fn radii(&self) -> f64 {
         self.a.shape.radius() + self.b.shape.radius()
+    }
+
+    /// λ1 + λ2 from probe `l` to probe `r`, between which both poses are linear in time.
+    pub fn lambda(&self, bound: BoundKind, l: &Probe, r: &Probe) -> f64 {
+        let one = |body: &Body, p: &Pose, q: &Pose| {
+            lambda(bound, &body.motion, body.shape.radius(), (l.t, p), (r.t, q))
+        };
+        one(self.a, &l.pose_a, &r.pose_a) + one(self.b, &l.pose_b, &r.pose_b)
     }
 
     /// η(t): the gap between the bounding discs (eq. 13) while it is at least δ, else the
