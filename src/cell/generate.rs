@@ -32,9 +32,10 @@ pub enum Kind {
     /// As [`Kind::Pairs`], moved by 10⁵ to 10⁶ in x and y. δ = 0.001 (the coordinates stay
     /// below 2³⁸·δ).
     LargeCoordinates,
-    /// N robots, each going back and forth along its own lane around a cell of a square grid
-    /// (100 samples each, some lanes long enough to cross their neighbours'), and a few
-    /// static obstacles in spare cells; the hall grows with N. δ = 0.01.
+    /// N robots, each going back and forth along its own lane about a cell of a square grid
+    /// (100 samples each; one lane in five crosses into the next cell, the others stay in
+    /// their own), and a few static obstacles in spare cells; the hall grows with N. Nothing
+    /// touches at t = 0; contacts come from the crossing lanes. δ = 0.01.
     Hall,
 }
 
@@ -404,23 +405,40 @@ fn spinning(rng: &mut R) -> Vec<Body> {
 }
 
 /// `n` robots and `max(1, n / 8)` obstacles shuffled over the cells of a near-square grid
-/// of pitch 3 (so the area grows as n). Each robot swings along x or y about its cell
-/// centre (amplitude 0.5 to 0.9, or 2 to 3 for one robot in five, whose lane then crosses
-/// its neighbours') and sways in θ; horizon [0, 20], 100 evenly spaced samples.
+/// of pitch [`HALL_PITCH`] (so the area grows as n); horizon [0, 20], 100 evenly spaced
+/// samples per robot. Each robot swings along x or y about its cell's centre and sways in θ.
+///
+/// What is known by construction: an obstacle, and a robot on a short lane (amplitude 0.5 to
+/// 0.9, less if its shape is large), stay inside their own cell's square shrunk by
+/// [`HALL_MARGIN`], so two of them never meet. One robot in five has a crossing lane
+/// (amplitude 2 to 3) that reaches into the next cell; it starts at its cell's centre, so no
+/// robot touches anything at t = 0, and every contact is a crossing robot meeting a
+/// neighbour or an obstacle while out of its cell.
 fn hall(rng: &mut R, n: usize) -> Vec<Body> {
-    const PITCH: f64 = 3.0;
+    let inside = HALL_PITCH / 2.0 - HALL_MARGIN;
     let obstacles = (n / 8).max(1);
     let cells = n + obstacles;
     let cols = (cells as f64).sqrt().ceil() as usize;
     let mut order: Vec<usize> = (0..cols * cells.div_ceil(cols)).collect();
     order.shuffle(rng);
-    let cell = |k: usize| Vec2::new((k % cols) as f64 * PITCH, (k / cols) as f64 * PITCH);
+    let cell = |k: usize| {
+        Vec2::new(
+            (k % cols) as f64 * HALL_PITCH,
+            (k / cols) as f64 * HALL_PITCH,
+        )
+    };
     let mut bodies = Vec::with_capacity(cells);
     for (i, &k) in order[..n].iter().enumerate() {
         let shape = random_shape(rng, 0.3..0.5);
-        let long = rng.random_bool(0.2);
-        let amp = rng.random_range(if long { 2.0..3.0 } else { 0.5..0.9 });
-        let (w, phase) = (rng.random_range(0.3..0.8), rng.random_range(0.0..TAU));
+        let radius = polygon(&shape).radius();
+        let crossing = rng.random_bool(0.2);
+        let amp = if crossing {
+            rng.random_range(2.0..3.0)
+        } else {
+            rng.random_range(0.5..0.9f64).min(inside - radius)
+        };
+        // Phase 0 or π: at its centre at t = 0, heading either way.
+        let (w, phase) = (rng.random_range(0.3..0.8), pick(rng, [0.0, PI]));
         let [ax, ay] = pick(rng, [[amp, 0.0], [0.0, amp]]);
         let sway = [0.0..0.5, 0.2..1.0, 0.0..TAU].map(|r| rng.random_range(r));
         let theta0 = rng.random_range(-PI..PI);
@@ -436,15 +454,22 @@ fn hall(rng: &mut R, n: usize) -> Vec<Body> {
         bodies.push(robot(format!("R{}", i + 1), &shape, samples));
     }
     for (i, &k) in order[n..n + obstacles].iter().enumerate() {
-        let c = cell(k);
-        let world: Vec<[f64; 2]> = random_shape(rng, 0.5..1.0)
+        let (c, shape) = (cell(k), random_shape(rng, 0.5..1.0));
+        let shrink = (inside / polygon(&shape).radius()).min(1.0);
+        let world: Vec<[f64; 2]> = shape
             .iter()
-            .map(|p| [p[0] + c.x, p[1] + c.y])
+            .map(|p| [p[0] * shrink + c.x, p[1] * shrink + c.y])
             .collect();
         bodies.push(Body::obstacle(format!("O{}", i + 1), &polygon(&world)));
     }
     bodies
 }
+
+/// The distance between the centres of neighbouring cells of a [`Kind::Hall`].
+const HALL_PITCH: f64 = 3.0;
+/// How far inside its cell's square an obstacle, or a robot on a short lane, stays: the gap
+/// between two such neighbours is at least twice this, far above the hall's δ.
+const HALL_MARGIN: f64 = 0.05;
 
 #[cfg(test)]
 mod tests {
@@ -460,6 +485,56 @@ mod tests {
             assert!((s.vel.x - fd(a.pos.x, b.pos.x)).abs() < 1e-6);
             assert!((s.vel.y - fd(a.pos.y, b.pos.y)).abs() < 1e-6);
             assert!((s.omega - fd(a.theta, b.theta)).abs() < 1e-6);
+        }
+    }
+
+    /// The vertices of `b` at each of its samples (an obstacle: once), relative to `c`.
+    fn offsets(b: &Body, c: Vec2) -> Vec<Vec<Vec2>> {
+        let poses = match &b.motion {
+            Motion::Sampled(tr) => tr.samples().iter().map(|s| (s.pos, s.theta)).collect(),
+            Motion::Fixed(p) => vec![(p.pos, p.theta)],
+        };
+        poses
+            .into_iter()
+            .map(|(pos, theta)| {
+                let posed = crate::geometry::Posed::new(&b.shape, pos.x, pos.y, theta);
+                (0..posed.len()).map(|k| posed.vertex(k) - c).collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn hall_bodies_stay_in_their_cells_but_the_crossing_lanes() {
+        let inside = HALL_PITCH / 2.0 - HALL_MARGIN;
+        let within = |vs: &[Vec2]| vs.iter().all(|v| v.amax() <= inside);
+        for (seed, n) in [(1, 10), (2, 100), (3, 300)] {
+            let bodies = hall(&mut R::seed_from_u64(seed), n);
+            let mut centres = Vec::new();
+            let mut crossing = 0;
+            for b in &bodies {
+                let Motion::Sampled(tr) = &b.motion else {
+                    // Obstacles: the cell is the one of their box's centre.
+                    let vs = &offsets(b, Vec2::zeros())[0];
+                    let mid = vs.iter().fold(Vec2::zeros(), |m, v| m + v) / vs.len() as f64;
+                    let c = (mid / HALL_PITCH).map(f64::round) * HALL_PITCH;
+                    assert!(within(&offsets(b, c)[0]), "{}", b.name);
+                    centres.push(c);
+                    continue;
+                };
+                // Robots start at their cell's centre, inside it.
+                let c = (tr.samples()[0].pos / HALL_PITCH).map(f64::round) * HALL_PITCH;
+                assert!((tr.samples()[0].pos - c).amax() < 1e-12, "{}", b.name);
+                let at = offsets(b, c);
+                assert!(within(&at[0]), "{} at t = 0", b.name);
+                crossing += usize::from(!at.iter().all(|vs| within(vs)));
+                centres.push(c);
+            }
+            // One cell each, and about one lane in five crosses.
+            centres.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
+            centres.dedup();
+            assert_eq!(centres.len(), bodies.len());
+            let share = crossing as f64 / n as f64;
+            assert!((0.05..0.4).contains(&share), "{crossing} of {n} cross");
         }
     }
 

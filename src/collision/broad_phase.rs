@@ -4,11 +4,14 @@
 //! that holds it throughout the window, grown by δ/2: bodies whose boxes do not meet are
 //! more than δ apart in the window (along the axis that separates the boxes). Meeting boxes
 //! are found per window with a uniform grid, so a window costs O(N log N) for a scene of
-//! bounded density (the sort of the grid entries), not the N² of [`Scene::pairs`].
+//! bounded density (the sort of the grid entries), not the N² of [`Scene::pairs`]. From
+//! [`PARALLEL_MIN_ROBOTS`] robots on, the robots' boxes and then the windows are spread over
+//! rayon's thread pool.
 
 use super::Scene;
 use crate::geometry::{Posed, Vec2};
 use crate::motion::{Motion, Sample};
+use rayon::prelude::*;
 
 /// Relative slack added to every box: covers the rounding of interpolated poses and of the
 /// narrow phase's own arithmetic (a few units in the last place of the coordinates), with
@@ -17,6 +20,11 @@ const SLACK: f64 = 1e-12;
 /// At most this many windows: beyond it the boxes hardly shrink, while each window costs a
 /// sort of the grid entries.
 const MAX_WINDOWS: usize = 64;
+/// From this many robots on, the boxes are computed and the windows searched in parallel.
+const PARALLEL_MIN_ROBOTS: usize = 64;
+/// Robots per parallel task when their boxes are computed: fewer cost more in scheduling
+/// than they save.
+const ROBOTS_PER_TASK: usize = 32;
 /// A box covering more grid cells than this is tested against every box of its window
 /// directly, so that one long box cannot flood the grid.
 const MAX_CELLS: i128 = 64;
@@ -86,6 +94,13 @@ impl Aabb {
 /// horizon. Nothing is left out on non-finite input (a NaN δ, a pose or a box that is not
 /// finite).
 pub fn candidate_pairs(scene: &Scene, delta: f64) -> Vec<(usize, usize)> {
+    // Handing a few robots to the thread pool costs more than it saves.
+    let parallel = scene.bodies.iter().filter(|b| b.is_robot()).count() >= PARALLEL_MIN_ROBOTS;
+    candidates(scene, delta, parallel)
+}
+
+/// [`candidate_pairs`], on the thread pool or not: the same pairs either way.
+fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> {
     if delta.is_nan() {
         return scene.pairs();
     }
@@ -117,32 +132,39 @@ pub fn candidate_pairs(scene: &Scene, delta: f64) -> Vec<(usize, usize)> {
         ends.push((t0 * (1.0 - f) + t1 * f).clamp(ends[w - 1], t1));
     }
     ends.push(t1);
-    let mut found = Vec::new();
-    let mut boxes = Vec::with_capacity(bodies.len());
-    // Per robot, the first sample after the current window's start: windows go forward in
-    // time, so each robot's samples are scanned once in all.
-    let mut next = vec![0; tracks.len()];
-    for span in ends.windows(2) {
-        let (a, b) = (span[0], span[1]);
-        boxes.clear();
-        for (&(i, s), k) in tracks.iter().zip(&mut next) {
-            // G moves linearly between samples: the hull of its positions at the window's
-            // ends and at the samples strictly inside holds it throughout.
-            let mut hull = Aabb::EMPTY;
-            let (start, scale_a) = position_at(s, k, a);
-            hull.add(&start);
-            while *k < s.len() && s[*k].t < b {
-                hull.add(&s[*k].pos);
-                *k += 1;
-            }
-            let (end, scale_b) = position_at(s, k, b);
-            hull.add(&end);
-            let scale = hull.magnitude().max(scale_a).max(scale_b);
-            boxes.push((i, hull.grown(bodies[i].shape.radius() + half, scale)));
-        }
-        boxes.extend_from_slice(&fixed);
-        meeting(&boxes, &mut found);
+    // Every robot's box in every window (row by robot), robots in parallel: reading the
+    // samples is most of the broad phase's work, and each robot's are read once.
+    let mut swept = vec![Aabb::EMPTY; tracks.len() * windows];
+    let fill = |(row, &(i, s)): (&mut [Aabb], &(usize, &[Sample]))| {
+        window_boxes(s, &ends, bodies[i].shape.radius() + half, row)
+    };
+    if parallel {
+        let rows = swept.par_chunks_mut(windows).zip(&tracks);
+        rows.with_min_len(ROBOTS_PER_TASK).for_each(fill);
+    } else {
+        swept.chunks_mut(windows).zip(&tracks).for_each(fill);
     }
+    // Then the windows, in parallel, each with its own grid.
+    let in_window = |w: usize| {
+        let rows = swept.chunks_exact(windows);
+        let boxes: Vec<(usize, Aabb)> = tracks
+            .iter()
+            .zip(rows)
+            .map(|(&(i, _), row)| (i, row[w]))
+            .chain(fixed.iter().copied())
+            .collect();
+        let mut found = Vec::new();
+        meeting(&boxes, &mut found);
+        found
+    };
+    let found: Vec<(usize, usize)> = if parallel {
+        (0..windows)
+            .into_par_iter()
+            .flat_map_iter(in_window)
+            .collect()
+    } else {
+        (0..windows).flat_map(in_window).collect()
+    };
     // Report order: robot-robot pairs by (i, j), then robot-obstacle pairs by (robot, obstacle).
     let robot = |i: usize| bodies[i].is_robot();
     let mut pairs: Vec<_> = found
@@ -157,6 +179,29 @@ pub fn candidate_pairs(scene: &Scene, delta: f64) -> Vec<(usize, usize)> {
     pairs.sort_unstable();
     pairs.dedup();
     pairs.into_iter().map(|(_, i, j)| (i, j)).collect()
+}
+
+/// Fills `row` with the boxes, grown by `grow`, that hold the disc of radius `grow` about G
+/// of the robot with samples `s` throughout each window between consecutive `ends`.
+fn window_boxes(s: &[Sample], ends: &[f64], grow: f64, row: &mut [Aabb]) {
+    // Windows go forward in time: the samples are scanned once in all.
+    let mut k = 0;
+    for (span, out) in ends.windows(2).zip(row) {
+        let (a, b) = (span[0], span[1]);
+        // G moves linearly between samples: the hull of its positions at the window's ends
+        // and at the samples strictly inside holds it throughout.
+        let mut hull = Aabb::EMPTY;
+        let (start, scale_a) = position_at(s, &mut k, a);
+        hull.add(&start);
+        while k < s.len() && s[k].t < b {
+            hull.add(&s[k].pos);
+            k += 1;
+        }
+        let (end, scale_b) = position_at(s, &mut k, b);
+        hull.add(&end);
+        let scale = hull.magnitude().max(scale_a).max(scale_b);
+        *out = hull.grown(grow, scale);
+    }
 }
 
 /// The position of G at `t`, as [`Motion::pose_at`] computes it, and the magnitude of the
@@ -379,6 +424,22 @@ mod tests {
         assert!(n < 20 * 1000, "{n} candidates of {}", hall.pair_count());
         let all = candidate_pairs(&hall, f64::INFINITY);
         assert_eq!(all.len(), hall.pair_count(), "an infinite δ keeps all");
+    }
+
+    #[test]
+    fn the_thread_pool_changes_nothing() {
+        for (seed, n) in [(1, 70), (2, 300), (3, 1000)] {
+            let hall = generate_scene(Kind::Hall, seed, 0, n);
+            for delta in [hall.delta, 0.4, 1.5] {
+                let serial = candidates(&hall, delta, false);
+                assert_eq!(
+                    candidates(&hall, delta, true),
+                    serial,
+                    "{n} robots, δ {delta}"
+                );
+                assert!(!serial.is_empty());
+            }
+        }
     }
 
     #[test]

@@ -125,6 +125,16 @@ pub struct PairStats {
 /// holds before `safe_until`, which is within the time tolerance before it. The result,
 /// counters included, does not depend on the number of threads.
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
+    if scene.pair_count() < BROAD_PHASE_MIN_PAIRS {
+        check_in_pool(scene, opts)
+    } else {
+        // The broad phase and the pairs each go to the thread pool: from a thread outside
+        // it, hand over the whole check once instead of waking the pool for each.
+        rayon::scope(|_| check_in_pool(scene, opts))
+    }
+}
+
+fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let horizon = scene.horizon();
     let delta = opts.delta.unwrap_or(scene.delta);
     let time_tol = opts.time_tol.unwrap_or(1e-6 * (horizon.1 - horizon.0));
