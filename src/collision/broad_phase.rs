@@ -25,11 +25,13 @@ const PARALLEL_MIN_ROBOTS: usize = 64;
 /// Robots per parallel task when their boxes are computed: fewer cost more in scheduling
 /// than they save.
 const ROBOTS_PER_TASK: usize = 32;
+/// Fewer boxes than this are tested against each other directly: cheaper than a grid.
+const GRID_MIN_BOXES: usize = 32;
 /// A box covering more grid cells than this is tested against every box of its window
 /// directly, so that one long box cannot flood the grid.
 const MAX_CELLS: i128 = 64;
 
-/// An axis-aligned box. NaN once a point that is not finite was added.
+/// An axis-aligned box: NaN once a NaN point was added, infinite once an infinite one was.
 #[derive(Clone, Copy, Debug)]
 struct Aabb {
     lo: [f64; 2],
@@ -43,8 +45,9 @@ impl Aabb {
     };
 
     fn add(&mut self, p: &Vec2) {
-        if !(p.x.is_finite() && p.y.is_finite()) {
-            // Comparisons with NaN are false, so the box stays NaN.
+        // An infinite point makes the box infinite by itself; NaN would be skipped by the
+        // comparisons below, so it sets the box to NaN, where comparisons keep it.
+        if p.x.is_nan() || p.y.is_nan() {
             *self = Aabb {
                 lo: [f64::NAN; 2],
                 hi: [f64::NAN; 2],
@@ -249,7 +252,7 @@ fn window_count(scene: &Scene, tracks: &[(usize, &[Sample])]) -> usize {
 /// Appends to `out` the pairs of bodies of `boxes` (body, box) whose boxes meet, each once,
 /// and every pair with a box that is not finite.
 ///
-/// A uniform grid with cells the size of the median box: a box enters the cells it covers,
+/// From [`GRID_MIN_BOXES`] finite boxes on, a uniform grid with cells the size of the median box: a box enters the cells it covers,
 /// and a pair is tested in the cells both enter, but reported only in the first of them
 /// (the one at the larger of their lower cell indices), so nothing needs deduplicating.
 fn meeting(boxes: &[(usize, Aabb)], out: &mut Vec<(usize, usize)>) {
@@ -258,7 +261,11 @@ fn meeting(boxes: &[(usize, Aabb)], out: &mut Vec<(usize, usize)>) {
         let others = finite.iter().chain(&wild[k + 1..]);
         out.extend(others.map(|&&(j, _)| (i, j)));
     }
-    if finite.is_empty() {
+    if finite.len() < GRID_MIN_BOXES {
+        for (k, &&(i, b)) in finite.iter().enumerate() {
+            let meet = finite[k + 1..].iter().filter(|(_, c)| b.meets(c));
+            out.extend(meet.map(|&&(j, _)| (i, j)));
+        }
         return;
     }
     let mut sizes: Vec<f64> = finite.iter().map(|(_, b)| b.size()).collect();
