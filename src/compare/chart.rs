@@ -12,6 +12,10 @@ const LEFT: f64 = 70.0;
 const RIGHT: f64 = 680.0;
 const TOP: f64 = 110.0;
 const BOTTOM: f64 = 460.0;
+/// A label's line height and a generous width per character at font size 12, for placing
+/// labels clear of each other.
+const LABEL_HEIGHT: f64 = 15.0;
+const LABEL_CHAR_WIDTH: f64 = 7.0;
 
 /// The chart as an SVG document.
 pub fn chart(c: &Comparison) -> String {
@@ -102,24 +106,55 @@ pub fn chart(c: &Comparison) -> String {
                 .set("stroke-dasharray", "4 3"),
         );
     }
-    // Labels slant up and to the right; a point close to one already labelled at the same
-    // height slants steeper, so that neighbours stay legible.
-    let mut placed: Vec<(f64, f64)> = Vec::new();
+    // Labels read horizontally, just above and right of their point (left of it near the
+    // right edge). One that would overlap a label already placed, or a point, moves up a
+    // line at a time, with a leader line back to its point.
+    let mut taken: Vec<[f64; 4]> = points
+        .iter()
+        .map(|p| {
+            let (px, py) = (x(p.1), y(p.2 as f64));
+            [px - 5.0, py - 5.0, px + 5.0, py + 5.0]
+        })
+        .collect();
     let mut by_x: Vec<_> = points.iter().collect();
     by_x.sort_by(|a, b| a.1.total_cmp(&b.1));
     for &&(name, us, missed, invented) in &by_x {
         let (px, py) = (x(us), y(missed as f64));
-        let crowded = placed
-            .iter()
-            .filter(|(qx, qy)| (px - qx).abs() < 40.0 && (py - qy).abs() < 12.0)
-            .count();
-        placed.push((px, py));
-        let angle = [-30.0, -65.0, -85.0][crowded.min(2)];
         let label = if invented > 0 {
             format!("{name} ({invented} invented)")
         } else {
             name.to_string()
         };
+        let width = LABEL_CHAR_WIDTH * label.chars().count() as f64;
+        let left = px + 8.0 + width > WIDTH - 4.0;
+        let (x0, anchor) = if left {
+            (px - 8.0 - width, "end")
+        } else {
+            (px + 8.0, "start")
+        };
+        let mut base = py - 8.0;
+        let overlaps = |base: f64, r: &[f64; 4]| {
+            // A space's width apart, so that neighbours do not read as one word.
+            let b = [
+                x0 - 6.0,
+                base - LABEL_HEIGHT + 2.0,
+                x0 + width + 6.0,
+                base + 2.0,
+            ];
+            b[0] < r[2] && r[0] < b[2] && b[1] < r[3] && r[1] < b[3]
+        };
+        while base > LABEL_HEIGHT && taken.iter().any(|r| overlaps(base, r)) {
+            base -= LABEL_HEIGHT;
+        }
+        taken.push([x0, base - LABEL_HEIGHT + 2.0, x0 + width, base + 2.0]);
+        if base < py - 8.0 - 1.0 {
+            let lx = if left { x0 + width } else { x0 };
+            doc = doc.add(
+                line(px, py - 5.0, lx, base - 4.0)
+                    .set("stroke", colour(name))
+                    .set("stroke-width", 0.6),
+            );
+        }
         doc = doc
             .add(
                 Circle::new()
@@ -131,12 +166,8 @@ pub fn chart(c: &Comparison) -> String {
                     .set("stroke-width", 2),
             )
             .add(
-                text(0.0, 0.0, &label, "start")
-                    .set("fill", colour(name))
-                    .set(
-                        "transform",
-                        format!("translate({} {}) rotate({angle})", px + 7.0, py - 7.0),
-                    ),
+                text(if left { px - 8.0 } else { x0 }, base, &label, anchor)
+                    .set("fill", colour(name)),
             );
     }
     doc.to_string()
