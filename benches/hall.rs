@@ -2,8 +2,8 @@
 //! alone and the whole check, each on 1 and 2 threads.
 //!
 //! `hall-N` is the generator's hall: its crossing lanes make contacts early in the horizon,
-//! and once the earliest is known the other pairs stop there, so its check covers about the
-//! first second. `hall-free-N` is the same hall with the robot of each first contact removed
+//! and once the earliest is known the other pairs stop there, so its check covers the
+//! horizon only up to that contact. `hall-free-N` is the same hall with the robot of each first contact removed
 //! until none is left: there every candidate pair is checked over the whole horizon. The
 //! scenes' pair counts and verdicts are printed once, before measuring.
 

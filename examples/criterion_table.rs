@@ -9,11 +9,13 @@
 //! `GROUP` is left out of the ids when a `/` follows it; then an id `a/b/c` goes to row
 //! `a/b`, column `c`, and an id `a` to row `a`, column `median`. `--per K` divides every median by K (a bench
 //! that times K queries per iteration); each `--ratio A/B` adds the row or column A over B;
-//! `--transpose` swaps rows and columns.
+//! `--transpose` swaps rows and columns. It warns when the figures were written more than an
+//! hour apart, as stale results of criterion's earlier runs would be.
 
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime};
 
 struct Args {
     group: String,
@@ -78,6 +80,13 @@ fn read(path: &Path) -> Result<Value, String> {
 
 /// A time in nanoseconds, to 3 significant digits in a fitting unit.
 fn time(ns: f64) -> String {
+    // Rounded first, so that 999.7 ns reads 1.00 µs, not 1000 ns.
+    let ns = if ns > 0.0 {
+        let scale = 10f64.powi(ns.log10().floor() as i32 - 2);
+        (ns / scale).round() * scale
+    } else {
+        ns
+    };
     let (v, unit) = match ns {
         x if x < 1e3 => (x, "ns"),
         x if x < 1e6 => (x / 1e3, "µs"),
@@ -109,6 +118,9 @@ fn run() -> Result<(), String> {
     // (row, column) -> median in ns.
     let mut cells = BTreeMap::new();
     let (mut rows, mut cols) = (Vec::new(), Vec::new());
+    // The oldest and the newest of the figures: criterion keeps the results of benchmarks
+    // that no longer exist, and of runs long past.
+    let mut when = None;
     for dir in found {
         let id = read(&dir.join("benchmark.json"))?["full_id"]
             .as_str()
@@ -117,6 +129,14 @@ fn run() -> Result<(), String> {
         if !id.starts_with(&args.group) {
             continue;
         }
+        let modified = std::fs::metadata(dir.join("estimates.json"))
+            .and_then(|m| m.modified())
+            .map_err(|e| format!("{}: {e}", dir.display()))?;
+        when = Some(
+            when.map_or((modified, modified), |(a, b): (SystemTime, SystemTime)| {
+                (a.min(modified), b.max(modified))
+            }),
+        );
         let median = read(&dir.join("estimates.json"))?["median"]["point_estimate"]
             .as_f64()
             .ok_or(format!("{}: no median", dir.display()))?;
@@ -139,6 +159,16 @@ fn run() -> Result<(), String> {
             }
         }
         cells.insert((row.to_string(), col.to_string()), median / args.per);
+    }
+    if let Some((oldest, newest)) = when {
+        let spread = newest.duration_since(oldest).unwrap_or_default();
+        if spread > Duration::from_secs(3600) {
+            eprintln!(
+                "criterion_table: these figures were written up to {:.1} hours apart: \
+                 some may be stale (delete target/criterion and run the bench again)",
+                spread.as_secs_f64() / 3600.0
+            );
+        }
     }
     if cells.is_empty() {
         return Err(format!(

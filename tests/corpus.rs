@@ -165,3 +165,36 @@ fn result_does_not_depend_on_the_number_of_threads() {
         assert_eq!(reports[0], reports[2], "{}", t.file);
     }
 }
+
+/// Halls large enough for the parallel broad phase, free and colliding: the same report on
+/// 1, 2 and 4 threads, and from a thread outside any pool.
+#[test]
+fn halls_do_not_depend_on_the_number_of_threads() {
+    use workcell::cell::{generate_scene, Kind};
+    for (seed, n) in [(1, 100), (2, 400)] {
+        let mut hall = generate_scene(Kind::Hall, seed, 0, n);
+        let opts = CheckOptions {
+            per_pair: true,
+            ..CheckOptions::default()
+        };
+        let colliding = check(&hall, &opts);
+        let contact = colliding
+            .first_contact
+            .clone()
+            .expect("halls this size collide");
+        // Without the robot of the first contact, another contact or none.
+        hall.bodies.retain(|b| b.name != contact.bodies[0]);
+        for scene in [generate_scene(Kind::Hall, seed, 0, n), hall] {
+            let outside = check(&scene, &opts);
+            assert!(outside.pairs_pruned > 0);
+            for threads in [1, 2, 4] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let inside = pool.install(|| check(&scene, &opts));
+                assert_eq!(inside, outside, "{n} robots on {threads} threads");
+            }
+        }
+    }
+}

@@ -21,7 +21,7 @@ const SLACK: f64 = 1e-12;
 /// sort of the grid entries.
 const MAX_WINDOWS: usize = 64;
 /// From this many robots on, the boxes are computed and the windows searched in parallel.
-const PARALLEL_MIN_ROBOTS: usize = 64;
+pub(super) const PARALLEL_MIN_ROBOTS: usize = 64;
 /// Robots per parallel task when their boxes are computed: fewer cost more in scheduling
 /// than they save.
 const ROBOTS_PER_TASK: usize = 32;
@@ -98,8 +98,7 @@ impl Aabb {
 /// finite).
 pub fn candidate_pairs(scene: &Scene, delta: f64) -> Vec<(usize, usize)> {
     // Handing a few robots to the thread pool costs more than it saves.
-    let parallel = scene.bodies.iter().filter(|b| b.is_robot()).count() >= PARALLEL_MIN_ROBOTS;
-    candidates(scene, delta, parallel)
+    candidates(scene, delta, scene.robot_count() >= PARALLEL_MIN_ROBOTS)
 }
 
 /// [`candidate_pairs`], on the thread pool or not: the same pairs either way.
@@ -252,9 +251,10 @@ fn window_count(scene: &Scene, tracks: &[(usize, &[Sample])]) -> usize {
 /// Appends to `out` the pairs of bodies of `boxes` (body, box) whose boxes meet, each once,
 /// and every pair with a box that is not finite.
 ///
-/// From [`GRID_MIN_BOXES`] finite boxes on, a uniform grid with cells the size of the median box: a box enters the cells it covers,
-/// and a pair is tested in the cells both enter, but reported only in the first of them
-/// (the one at the larger of their lower cell indices), so nothing needs deduplicating.
+/// From [`GRID_MIN_BOXES`] finite boxes on, a uniform grid with cells the size of the median
+/// box: a box enters the cells it covers, and a pair is tested in the cells both enter, but
+/// reported only in the first of them (the one at the larger of their lower cell indices),
+/// so nothing needs deduplicating.
 fn meeting(boxes: &[(usize, Aabb)], out: &mut Vec<(usize, usize)>) {
     let (finite, wild): (Vec<_>, Vec<_>) = boxes.iter().partition(|(_, b)| b.is_finite());
     for (k, &&(i, _)) in wild.iter().enumerate() {
@@ -375,7 +375,14 @@ mod tests {
     fn pruned_pairs_never_come_within_delta() {
         let mut pruned = 0;
         for seed in 0..12 {
-            for n in [2, 5, 12] {
+            // Up to 12 robots the boxes are tested pairwise; 40 robots and 5 obstacles make
+            // 45 boxes, which go through the grid.
+            let sizes: &[usize] = if seed < 3 {
+                &[2, 5, 12, 40]
+            } else {
+                &[2, 5, 12]
+            };
+            for &n in sizes {
                 let hall = generate_scene(Kind::Hall, seed, 0, n);
                 // The scene's δ, and larger ones that bring boxes to the edge of meeting.
                 for delta in [hall.delta, 0.3, 1.5] {
@@ -435,17 +442,88 @@ mod tests {
 
     #[test]
     fn the_thread_pool_changes_nothing() {
+        let pools = [1, 2, 4].map(|n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        });
         for (seed, n) in [(1, 70), (2, 300), (3, 1000)] {
             let hall = generate_scene(Kind::Hall, seed, 0, n);
             for delta in [hall.delta, 0.4, 1.5] {
                 let serial = candidates(&hall, delta, false);
-                assert_eq!(
-                    candidates(&hall, delta, true),
-                    serial,
-                    "{n} robots, δ {delta}"
-                );
                 assert!(!serial.is_empty());
+                for pool in &pools {
+                    let parallel = pool.install(|| candidates(&hall, delta, true));
+                    assert_eq!(parallel, serial, "{n} robots, δ {delta}");
+                }
             }
+        }
+    }
+
+    /// A deterministic box of sides up to `size` with its corner in a square of side 100.
+    fn random_box(state: &mut u64, size: f64) -> Aabb {
+        let mut next = || {
+            // SplitMix64 steps, as uniform numbers in [0, 1).
+            *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = *state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            (z ^ (z >> 31)) as f64 / 2f64.powi(64)
+        };
+        let (x, y) = (100.0 * next(), 100.0 * next());
+        let (w, h) = (size * next(), size * next());
+        Aabb {
+            lo: [x, y],
+            hi: [x + w, y + h],
+        }
+    }
+
+    #[test]
+    fn the_grid_finds_what_testing_every_pair_finds() {
+        let mut state = 7;
+        for (n, size) in [(40, 20.0), (300, 8.0), (2000, 3.0)] {
+            // Mostly small boxes; one in fifty covers a large part of the square (more than
+            // MAX_CELLS grid cells), one in fifty has no width.
+            let boxes: Vec<(usize, Aabb)> = (0..n)
+                .map(|i| {
+                    let b = match i % 50 {
+                        0 => random_box(&mut state, 80.0),
+                        1 => {
+                            let b = random_box(&mut state, size);
+                            Aabb {
+                                hi: [b.lo[0], b.hi[1]],
+                                ..b
+                            }
+                        }
+                        _ => random_box(&mut state, size),
+                    };
+                    (i, b)
+                })
+                .collect();
+            let mut expected = Vec::new();
+            for (k, (i, b)) in boxes.iter().enumerate() {
+                for (j, c) in &boxes[k + 1..] {
+                    if b.meets(c) {
+                        expected.push((*i, *j));
+                    }
+                }
+            }
+            let mut found = Vec::new();
+            meeting(&boxes, &mut found);
+            let mut found: Vec<_> = found
+                .into_iter()
+                .map(|(i, j)| (i.min(j), i.max(j)))
+                .collect();
+            found.sort_unstable();
+            let count = found.len();
+            found.dedup();
+            assert_eq!(found.len(), count, "a pair twice, {n} boxes");
+            assert_eq!(found, expected, "{n} boxes");
+            assert!(
+                expected.len() > n / 4,
+                "{n} boxes, few meet: the test shows little"
+            );
         }
     }
 

@@ -1,7 +1,7 @@
 //! Checking a whole scene: the pairs the broad phase keeps, in parallel, earliest contact
 //! first.
 
-use super::broad_phase::candidate_pairs;
+use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
 use super::pair::{check_pair, PairSettings, SharedLimit};
 use super::{Method, Scene, Stats};
 use crate::geometry::WalkTolerances;
@@ -125,12 +125,12 @@ pub struct PairStats {
 /// holds before `safe_until`, which is within the time tolerance before it. The result,
 /// counters included, does not depend on the number of threads.
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
-    if scene.pair_count() < BROAD_PHASE_MIN_PAIRS {
-        check_in_pool(scene, opts)
-    } else {
-        // The broad phase and the pairs each go to the thread pool: from a thread outside
-        // it, hand over the whole check once instead of waking the pool for each.
+    if scene.robot_count() >= PARALLEL_MIN_ROBOTS {
+        // The broad phase goes to the thread pool twice and the pairs once more: from a
+        // thread outside the pool, hand the whole check over once instead.
         rayon::scope(|_| check_in_pool(scene, opts))
+    } else {
+        check_in_pool(scene, opts)
     }
 }
 

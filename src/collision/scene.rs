@@ -70,9 +70,14 @@ impl Scene {
         pairs
     }
 
-    /// The number of pairs of [`Scene::pairs`], without listing them.
+    /// The number of robots (bodies that move).
+    pub fn robot_count(&self) -> usize {
+        self.bodies.iter().filter(|b| b.is_robot()).count()
+    }
+
+    /// The number of pairs [`Scene::pairs`] gives, without listing them.
     pub fn pair_count(&self) -> usize {
-        let robots = self.bodies.iter().filter(|b| b.is_robot()).count();
+        let robots = self.robot_count();
         let obstacles = self.bodies.len() - robots;
         robots * robots.saturating_sub(1) / 2 + robots * obstacles
     }

@@ -12,6 +12,8 @@ const LEFT: f64 = 70.0;
 const RIGHT: f64 = 680.0;
 const TOP: f64 = 110.0;
 const BOTTOM: f64 = 460.0;
+/// The title's baseline.
+const TITLE_Y: f64 = 24.0;
 /// A label's line height and a generous width per character at font size 12, for placing
 /// labels clear of each other.
 const LABEL_HEIGHT: f64 = 15.0;
@@ -40,6 +42,10 @@ pub fn chart(c: &Comparison) -> String {
     let x = |us: f64| LEFT + (us.log10() - lo) / (hi - lo) * (RIGHT - LEFT);
     let y = |missed: f64| BOTTOM - missed / top_missed * (BOTTOM - TOP);
 
+    let title = format!(
+        "{} scenes ({} colliding): time per check against collisions missed",
+        c.scenes, c.colliding
+    );
     let mut doc = Document::new()
         .set("viewBox", (0.0, 0.0, WIDTH, HEIGHT))
         .set("width", WIDTH)
@@ -52,15 +58,7 @@ pub fn chart(c: &Comparison) -> String {
                 .set("height", "100%")
                 .set("fill", "white"),
         )
-        .add(text(
-            WIDTH / 2.0,
-            24.0,
-            &format!(
-                "{} scenes ({} colliding): time per check against collisions missed",
-                c.scenes, c.colliding
-            ),
-            "middle",
-        ));
+        .add(text(WIDTH / 2.0, TITLE_Y, &title, "middle"));
     let mut axes = Group::new().set("stroke", "#444").set("stroke-width", 1);
     axes = axes
         .add(line(LEFT, BOTTOM, RIGHT, BOTTOM))
@@ -107,14 +105,21 @@ pub fn chart(c: &Comparison) -> String {
         );
     }
     // Labels read horizontally, just above and right of their point (left of it near the
-    // right edge). One that would overlap a label already placed, or a point, moves up a
-    // line at a time, with a leader line back to its point.
+    // right edge). One that would overlap a label already placed, a point or the title moves
+    // up a line at a time, with a leader line back to its point.
+    let title_half = LABEL_CHAR_WIDTH * title.chars().count() as f64 / 2.0;
     let mut taken: Vec<[f64; 4]> = points
         .iter()
         .map(|p| {
             let (px, py) = (x(p.1), y(p.2 as f64));
             [px - 5.0, py - 5.0, px + 5.0, py + 5.0]
         })
+        .chain([[
+            WIDTH / 2.0 - title_half,
+            TITLE_Y - LABEL_HEIGHT,
+            WIDTH / 2.0 + title_half,
+            TITLE_Y + 4.0,
+        ]])
         .collect();
     let mut by_x: Vec<_> = points.iter().collect();
     by_x.sort_by(|a, b| a.1.total_cmp(&b.1));
