@@ -10,8 +10,8 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use std::time::Duration;
-use workcell::cell::{generate_scene, Kind};
 use workcell::collision::{candidate_pairs, check, CheckOptions, Scene};
+use workcell::generate::{generate_scene, Kind};
 
 const SEED: u64 = 1;
 

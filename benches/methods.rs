@@ -4,8 +4,8 @@
 //! of the kind's ten scenes (seed 1, halls of 10 robots), so time per check is a tenth of it.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use workcell::cell::{generate_scene, Kind};
 use workcell::collision::{candidate_pairs, check, check_with_parry, CheckOptions, Method, Scene};
+use workcell::generate::{generate_scene, Kind};
 
 fn methods(c: &mut Criterion) {
     let ours = [

@@ -9,6 +9,7 @@
 //! * [`cell`]: the model's files and their validation;
 //! * [`planning`]: point-to-point moves around the obstacles;
 //! * [`wcp`]: the work-cell graph, the sequencer and the collision feedback loop;
+//! * [`generate`]: deterministic scenes and cells for tests and benchmarks;
 //! * [`compare`]: the checking methods against each other and the parry peer.
 //!
 //! ```
@@ -30,6 +31,7 @@
 pub mod cell;
 pub mod collision;
 pub mod compare;
+pub mod generate;
 pub mod geometry;
 pub mod motion;
 pub mod planning;

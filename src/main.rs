@@ -13,9 +13,9 @@ mod cli;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use workcell::cell::Kind;
 use workcell::collision::{CheckOptions, Method};
 use workcell::compare::{default_contenders, Contender};
+use workcell::generate::Kind;
 
 #[derive(Parser)]
 #[command(

@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use workcell::cell::{generate_scene, Kind};
 use workcell::collision::Method;
 use workcell::compare::{compare, Comparison, Contender, NamedScene};
+use workcell::generate::{generate_scene, Kind};
 
 fn workcell(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_workcell"))

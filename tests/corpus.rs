@@ -170,7 +170,7 @@ fn result_does_not_depend_on_the_number_of_threads() {
 /// 1, 2 and 4 threads, and from a thread outside any pool.
 #[test]
 fn halls_do_not_depend_on_the_number_of_threads() {
-    use workcell::cell::{generate_scene, Kind};
+    use workcell::generate::{generate_scene, Kind};
     for (seed, n) in [(1, 100), (2, 400)] {
         let mut hall = generate_scene(Kind::Hall, seed, 0, n);
         let opts = CheckOptions {

@@ -7,8 +7,9 @@ use common::{exact_distance, place, pose_at, Pt};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use workcell::cell::{check_precision, generate_scene, parse_scene, scene_document, Kind};
+use workcell::cell::{check_precision, parse_scene, scene_document};
 use workcell::collision::{check, CheckOptions, CheckReport};
+use workcell::generate::{generate_scene, Kind};
 
 fn workcell(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_workcell"))

@@ -3,7 +3,6 @@
 
 mod cell_file;
 mod error;
-mod generate;
 mod precision;
 mod scene_file;
 mod scene_writer;
@@ -11,7 +10,6 @@ mod sequences_file;
 
 pub use cell_file::{load_cell, parse_cell, Cell, CellObstacle, CellRobot, LoadedCell, Task};
 pub use error::InputError;
-pub use generate::{generate_scene, scene_file_name, Kind};
 pub use precision::{check_precision, MAX_COORDINATE_OVER_DELTA};
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
 pub use scene_writer::scene_document;

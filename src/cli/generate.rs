@@ -3,7 +3,8 @@
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
-use workcell::cell::{generate_scene, scene_document, scene_file_name, InputError, Kind};
+use workcell::cell::{scene_document, InputError};
+use workcell::generate::{generate_scene, scene_file_name, Kind};
 
 /// Writes `DIR/<kind>-<seed>-<k>.json` for each kind and k in 0..count, creating `out` if
 /// missing, and prints one line per file. Same arguments, same bytes.

@@ -325,8 +325,8 @@ fn meeting(boxes: &[(usize, Aabb)], out: &mut Vec<(usize, usize)>) {
 mod tests {
     use super::super::pair::{check_pair, PairSettings, SharedLimit};
     use super::*;
-    use crate::cell::{generate_scene, Kind};
     use crate::collision::Body;
+    use crate::generate::{generate_scene, Kind};
     use crate::geometry::{brute_force_distance, ConvexPolygon};
     use crate::motion::{Pose, Trajectory};
 
