@@ -5,17 +5,17 @@
 //! * `check`: 0 collision-free, 1 collision found.
 //! * `solve`: 0 a collision-free schedule found, 1 none found within the limits.
 //! * `evaluate`: 0 the schedule is collision-free, 1 it collides.
-//! * `generate`: 0 all scenes written.
+//! * `generate`: 0 all scenes or cells written.
 //! * `compare`: 0 compared.
 
 mod cli;
 
 use clap::{Parser, Subcommand};
+use cli::generate::Family;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use workcell::collision::{CheckOptions, Method};
 use workcell::compare::{default_contenders, Contender};
-use workcell::generate::Kind;
 
 #[derive(Parser)]
 #[command(
@@ -106,14 +106,14 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<Contender>>,
     },
-    /// Write deterministic random scenes (same arguments, same bytes) as
-    /// `OUT/<kind>-<seed>-<k>.json` for k in 0..count.
+    /// Write deterministic random scenes or conflict cells (same arguments, same bytes) as
+    /// `OUT/<kind>-<seed>-<k>.json` (cells: `...-cell.json`) for k in 0..count.
     ///
     /// Exit status: 0 written, 2 the folder or a file cannot be written.
     Generate {
-        /// Family of scenes (see README: "`workcell generate`"), or `all` for every family.
-        #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(
-            Kind::ALL.map(Kind::name).into_iter().chain(["all"])))]
+        /// Family of scenes or cells (see README: "`workcell generate`"); `all` for every
+        /// family of scenes, `conflict` for every family of conflict cells.
+        #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Family::names()))]
         kind: String,
         /// Seed: the same seed gives the same scenes.
         #[arg(long)]
@@ -182,9 +182,7 @@ fn main() -> ExitCode {
             count,
             out,
         } => cli::generate::run_generate(
-            Kind::from_name(&kind)
-                .as_ref()
-                .map_or(&Kind::ALL[..], std::slice::from_ref),
+            &Family::parse(&kind).expect("clap accepts only the names of families"),
             seed,
             robots.map(|r| r as usize),
             count,

@@ -10,8 +10,8 @@ use workcell::collision::{check, Body, CheckOptions, Scene};
 use workcell::geometry::{ConvexPolygon, Vec2};
 use workcell::motion::{Motion, Pose, Trajectory};
 use workcell::planning::{
-    angle_between, plan_move, rest_to_rest_time, PlanError, PlannedMove, PlannerOptions,
-    RobotLimits,
+    angle_between, plan_move, rest_to_rest_time, time_primitives, PlanError, PlannedMove,
+    PlannerOptions, RobotLimits,
 };
 
 const DELTA: f64 = 0.01;
@@ -336,12 +336,20 @@ proptest! {
             Ok(planned) => {
                 check_model(&robot, from, to, &planned);
                 certify(&robot, &obstacles, &planned);
+                retimes_exactly(&robot, &planned);
             }
             // The ends are outside the obstacles' area: the start and goal are free, and
             // the obstacles never enclose one of them.
             Err(e) => prop_assert!(false, "{e}"),
         }
     }
+}
+
+/// Timing a move's primitives again gives its samples bit for bit: what `evaluate` relies on
+/// to replay the moves the feedback loop changed.
+fn retimes_exactly(robot: &ConvexPolygon, planned: &PlannedMove) {
+    let again = time_primitives(robot.radius(), &LIMITS, &planned.primitives, 4);
+    assert_eq!(&again, planned);
 }
 
 /// A pose 5 cm from a box, at a quarter turn from the start: reachable at its final angle,
@@ -374,6 +382,8 @@ fn a_goal_too_close_to_turn_at_is_reached_by_turning_apart() {
         .unwrap();
     assert!(m.samples[turned + 1..].iter().any(|s| s.pos != to.pos));
     assert!(m.duration >= rest_to_rest_time((to.pos - from.pos).norm(), 1.5, 2.0));
+    assert_eq!(m.primitives.len(), 3);
+    retimes_exactly(&robot, &m);
 }
 
 /// A half turn near a box: the turn in place must go the way the direct move would, not

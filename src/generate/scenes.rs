@@ -1,6 +1,7 @@
 //! Deterministic random scenes for `workcell generate`: the same kind, seed and index always
 //! give the same [`Scene`] (a ChaCha8 stream per scene, no clock, no hashing).
 
+use super::mix;
 use crate::collision::{Body, Scene};
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::{Motion, Sample, Trajectory};
@@ -102,14 +103,6 @@ pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene
         delta: kind.delta(),
         bodies,
     }
-}
-
-/// SplitMix64's finaliser: spreads (seed, kind, index) over the whole seed space.
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
 }
 
 type R = ChaCha8Rng;

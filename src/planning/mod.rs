@@ -82,10 +82,12 @@ mod minkowski;
 mod plan;
 mod profile;
 mod sampling;
+mod timed;
 mod turn_apart;
 mod visibility;
 
 pub use profile::rest_to_rest_time;
+pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;
 
 #[cfg(doc)]
@@ -142,6 +144,9 @@ pub struct PlannedMove {
     /// Time samples from 0 to `duration`, strictly increasing, ready for
     /// [`Trajectory::new`](crate::motion::Trajectory::new).
     pub samples: Vec<Sample>,
+    /// The rest-to-rest pieces the move is made of, one after the other (three for a move
+    /// that turns apart): [`time_primitives`] of them gives these samples again.
+    pub primitives: Vec<Primitive>,
 }
 
 /// Why a move could not be planned. Obstacle indices are positions in the slice given.

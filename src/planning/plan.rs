@@ -3,12 +3,12 @@
 use super::corners::cut_corners;
 use super::grown::Grown;
 use super::minkowski::{disc, minkowski_sum, swept_shape};
-use super::profile::{rest_to_rest_time, Trapezoid};
-use super::sampling::Timing;
+use super::profile::rest_to_rest_time;
+use super::timed::{time_primitive, Primitive};
 use super::visibility::shortest_path;
 use super::{angle_between, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use crate::geometry::{ConvexPolygon, Vec2};
-use crate::motion::{Pose, Sample};
+use crate::motion::Pose;
 
 /// Boundary tolerance relative to the largest coordinate: thousands of times the rounding
 /// of the construction, so that paths along a grown obstacle's edge are not rejected.
@@ -55,20 +55,6 @@ pub(super) fn plan_direct(
     if let Some(obstacle) = grown.iter().position(|g| g.contains(&to.pos, tol)) {
         return Err(PlanError::GoalBlocked { obstacle });
     }
-    if from.pos == to.pos && turn == 0.0 {
-        return Ok(PlannedMove {
-            duration: 0.0,
-            path: vec![from.pos, to.pos],
-            samples: vec![Sample {
-                t: 0.0,
-                pos: from.pos,
-                theta: from.theta,
-                vel: Vec2::zeros(),
-                omega: 0.0,
-            }],
-        });
-    }
-
     let segment_time = |length: f64| rest_to_rest_time(length, limits.max_speed, limits.max_accel);
     let blocking =
         |path: &[Vec2], k: usize| path.windows(2).any(|w| grown[k].blocks(&w[0], &w[1], tol));
@@ -97,29 +83,17 @@ pub(super) fn plan_direct(
         vec![from.pos, to.pos]
     };
 
-    let segments: Vec<Trapezoid> = path
-        .windows(2)
-        .map(|w| Trapezoid::fastest((w[1] - w[0]).norm(), limits.max_speed, limits.max_accel))
-        .collect();
-    // Summed in the order the sampler accumulates segment start times.
-    let t_trans = segments.iter().fold(0.0, |t, s| t + s.duration);
-    let alpha = limits.max_accel / shape.radius();
-    let t_rot = rest_to_rest_time(turn, limits.max_turn_rate, alpha);
-    let duration = t_trans.max(t_rot);
-    let timing = Timing {
-        path: &path,
-        segments: &segments,
-        rotation: Trapezoid::with_duration(turn.abs(), alpha, limits.max_turn_rate, duration),
-        turn,
-        from,
-        duration,
-    };
-    let samples = timing.samples(opts.samples_per_phase);
-    Ok(PlannedMove {
-        duration,
-        path,
-        samples,
-    })
+    // A move from a pose to itself is a primitive of no length and no turn: one sample.
+    Ok(time_primitive(
+        shape.radius(),
+        limits,
+        &Primitive {
+            path,
+            theta: from.theta,
+            turn,
+        },
+        opts.samples_per_phase,
+    ))
 }
 
 /// Refuses limits, δ, poses and options the model cannot use.

@@ -9,6 +9,7 @@
 //! the clearance guarantees hold leg by leg.
 
 use super::plan::plan_direct;
+use super::timed::chain;
 use super::{angle_between, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::Pose;
@@ -95,28 +96,4 @@ pub fn plan_move(
         .filter_map(legs)
         .min_by(|a, b| a.duration.total_cmp(&b.duration))
         .ok_or(error)
-}
-
-/// The legs one after the other, each starting where and when the previous one stops.
-fn chain(legs: &[PlannedMove]) -> PlannedMove {
-    let mut samples = legs[0].samples.clone();
-    let mut path = legs[0].path.clone();
-    let mut start = legs[0].duration;
-    for leg in &legs[1..] {
-        // A leg's first sample is the previous leg's last: at rest, at the same pose.
-        samples.extend(leg.samples[1..].iter().map(|s| crate::motion::Sample {
-            t: start + s.t,
-            ..*s
-        }));
-        path.extend(leg.path.iter().skip(1));
-        start += leg.duration;
-    }
-    // A turn in place repeats its point.
-    path.dedup();
-    // The last sample carries the duration exactly, as for a direct move.
-    PlannedMove {
-        duration: samples.last().map_or(0.0, |s| s.t),
-        path,
-        samples,
-    }
 }

@@ -181,6 +181,7 @@ fn reversed(m: &PlannedMove) -> PlannedMove {
         duration: m.duration,
         path: m.path.iter().rev().copied().collect(),
         samples,
+        primitives: m.primitives.iter().rev().map(|p| p.reversed()).collect(),
     }
 }
 
