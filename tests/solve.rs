@@ -289,14 +289,25 @@ fn small_cell(robots: &[(&str, &str)], obstacles: &str, tasks: &str) -> Cell {
 }
 
 #[test]
-fn negligible_task_durations_are_instants_not_crashes() {
-    // 2 + 1e-16 rounds to 2: the hold has no length on the time axis.
+fn task_durations_f64_rounds_away_are_refused_not_dropped() {
+    // 2 + 1e-16 rounds to 2: the task would have no length on the time axis, as a 1000 s
+    // task after moves of 1e20 s would. Both are refused like moves that vanish.
     let cell = small_cell(
         &[("R1", "[0, 0]")],
         "",
         r#"{"name": "t", "at": [1, 0], "duration": 1e-16}"#,
     );
-    assert_valid_solution(&cell, &solve(&cell, 0));
+    let opts = SolveOptions::default();
+    let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+    let e = wcp::solve(&cell, &prepared, &opts, &()).expect_err("refused");
+    assert_eq!(e.body.as_deref(), Some("R1"));
+    assert!(e.reason.contains("orders of magnitude"), "{e}");
+    let zero = small_cell(
+        &[("R1", "[0, 0]")],
+        "",
+        r#"{"name": "t", "at": [1, 0], "duration": 0}"#,
+    );
+    assert_valid_solution(&zero, &solve(&zero, 0));
 }
 
 #[test]

@@ -108,7 +108,7 @@ pub fn run_solve(
             collision_free: solved.collision_free,
             sequences,
             iterations: solved.iterations.len(),
-            waits: waits_json(&cell, &solved.delays),
+            waits: waits_json(&cell, &solved.delays()),
             blind_sequences: Some(sequences_json(&cell, &solved.blind_routes)),
             blind_makespan: Some(solved.blind_makespan),
             blind_optimal: Some(solved.blind_optimal),

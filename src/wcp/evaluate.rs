@@ -36,7 +36,7 @@ pub fn evaluate(
 ) -> Result<Evaluated, InputError> {
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    let mut cache = MoveCache::new(cell, opts.planner);
+    let cache = MoveCache::new(cell, opts.planner);
     let routes = &sequences.routes;
     let delays: Vec<Delay> = sequences
         .waits
@@ -54,7 +54,8 @@ pub fn evaluate(
             }
         })
         .collect();
-    let schedule = Schedule::build(cell, routes, &delays, &mut cache).map_err(|e| {
+    let legs = Delay::legs(cell.robots.len(), &delays);
+    let schedule = Schedule::build(cell, routes, &legs, &cache).map_err(|e| {
         let r = e.robot();
         let robot = &cell.robots[r].name;
         let field = match e {

@@ -13,6 +13,7 @@
 mod evaluate;
 mod feedback;
 mod graph;
+pub mod legs;
 mod moves;
 mod picture;
 pub mod report;
@@ -21,8 +22,8 @@ pub mod sequencer;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
-    describe, prepare, sequencer_error, solve, Iteration, Prepared, Progress, Remedy, SolveOptions,
-    Solved, StageTimes,
+    describe, prepare, sequencer_error, solve, Feedback, Iteration, Prepared, Progress, Remedy,
+    SolveOptions, Solved, StageTimes,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,
@@ -30,5 +31,6 @@ pub use graph::{
 pub use moves::{certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveTable};
 pub use picture::picture;
 pub use schedule::{
-    Activity, BuildError, Collision, Delay, MoveCache, RobotSchedule, Schedule, Segment,
+    route_nodes, Activity, BuildError, Collision, Delay, MoveCache, RobotSchedule, Schedule,
+    Segment,
 };

@@ -215,11 +215,11 @@ pub fn rounds_json(cell: &Cell, iterations: &[Iteration]) -> Vec<RoundJson> {
             iteration: k + 1,
             makespan: it.makespan,
             collision: it.collision.as_ref().map(|c| collision_json(cell, c)),
-            remedy: it.remedy.map(|r| match r {
+            remedy: it.remedy.as_ref().map(|r| match r {
                 Remedy::Resequence => "resequence",
                 Remedy::Delay(_) => "delay",
             }),
-            delay: match it.remedy {
+            delay: match &it.remedy {
                 Some(Remedy::Delay(d)) => Some(DelayJson {
                     robot: cell.robots[d.robot].name.clone(),
                     before: Activity::Move {
@@ -263,6 +263,16 @@ pub fn schedule_json<'a>(
                         ),
                         Activity::Work(t) => ("task", cell.tasks[t].name.as_str(), None),
                         Activity::Wait(node) => ("wait", node_name(cell, r, node), None),
+                        Activity::Pause { from, to } => (
+                            "pause",
+                            node_name(cell, r, from),
+                            Some(node_name(cell, r, to)),
+                        ),
+                        Activity::Park { from, to } => (
+                            "park",
+                            node_name(cell, r, from),
+                            Some(node_name(cell, r, to)),
+                        ),
                         Activity::Done => return None,
                     };
                     Some(SegmentJson {
@@ -304,19 +314,21 @@ pub fn summary(
                     "{} [{:.2}-{:.2}]",
                     cell.tasks[t].name, seg.start, seg.end
                 )),
-                Activity::Wait(_) => steps.push(format!(
-                    "{} [{:.2}-{:.2}]",
-                    seg.activity.describe(cell, r),
-                    seg.start,
-                    seg.end
-                )),
+                Activity::Wait(_) | Activity::Pause { .. } | Activity::Park { .. } => {
+                    steps.push(format!(
+                        "{} [{:.2}-{:.2}]",
+                        seg.activity.describe(cell, r),
+                        seg.start,
+                        seg.end
+                    ))
+                }
                 _ => {}
             }
         }
         let _ = writeln!(out, "{} -> home at {:.2}", steps.join(" -> "), s.end);
     }
     for (k, it) in rounds.iter().enumerate() {
-        let what = match (&it.collision, it.remedy) {
+        let what = match (&it.collision, &it.remedy) {
             (None, _) => "collision-free".to_owned(),
             (Some(c), Some(Remedy::Resequence)) => format!("{}; re-sequenced", describe(cell, c)),
             (Some(c), Some(Remedy::Delay(d))) => format!(

@@ -1,5 +1,6 @@
 //! The timed schedule: every robot's moves, waits and tasks, sampled into trajectories.
 
+use super::legs::{default_legs, leg, with_leg, HoldReason, Leg, Legs, Piece};
 use super::moves::{certified_move, node_name, node_pose, MoveFailure};
 use super::sequencer::Step;
 use crate::cell::Cell;
@@ -9,7 +10,7 @@ use crate::motion::{Motion, Pose, Sample, Trajectory};
 use crate::planning::{PlannedMove, PlannerOptions};
 use std::collections::HashMap;
 use std::f64::consts::TAU;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 /// What a robot does during a segment of its schedule. Nodes are robot-local: 0 is home,
 /// `1 + t` is task `t`.
@@ -26,6 +27,20 @@ pub enum Activity {
     Work(usize),
     /// Waiting at a node before moving on: a delay added by the feedback loop.
     Wait(usize),
+    /// Holding still at a point of the move between two nodes, for another robot to pass.
+    Pause {
+        /// Where the move starts.
+        from: usize,
+        /// Where it ends.
+        to: usize,
+    },
+    /// Parked out of another robot's way, on the way between two nodes.
+    Park {
+        /// Where the move starts.
+        from: usize,
+        /// Where it ends.
+        to: usize,
+    },
     /// At home after the last move, until the end of time.
     Done,
 }
@@ -34,7 +49,9 @@ impl Activity {
     /// The sequencer's step for this activity.
     pub fn step(self) -> Step {
         match self {
-            Activity::Move { from, to } => Step::Move { from, to },
+            Activity::Move { from, to }
+            | Activity::Pause { from, to }
+            | Activity::Park { from, to } => Step::Move { from, to },
             Activity::Work(t) => Step::Stay { node: t + 1 },
             Activity::Wait(node) => Step::Stay { node },
             Activity::Done => Step::Stay { node: 0 },
@@ -49,6 +66,18 @@ impl Activity {
             }
             Activity::Work(t) => format!("task {}", cell.tasks[t].name),
             Activity::Wait(node) => format!("wait at {}", place(cell, r, node)),
+            Activity::Pause { from, to } => {
+                format!(
+                    "pause on move {} -> {}",
+                    place(cell, r, from),
+                    place(cell, r, to)
+                )
+            }
+            Activity::Park { from, to } => format!(
+                "parked aside on move {} -> {}",
+                place(cell, r, from),
+                place(cell, r, to)
+            ),
             Activity::Done => "back home".to_owned(),
         }
     }
@@ -72,9 +101,10 @@ pub struct Segment {
     pub start: f64,
     /// When it ends (infinite for [`Activity::Done`]).
     pub end: f64,
-    /// The move that a delay would postpone to push this segment later: the move itself, the
-    /// move into the task, or the move after the wait. `None` once the robot is done.
-    pub delayable_move: Option<usize>,
+    /// The leg (move of the route, 0 out of home) this segment belongs to: the leg itself
+    /// (its wait, motion, pauses), or the leg that led into the task. A wait at that leg's
+    /// start pushes this segment later. `None` once the robot is done.
+    pub leg: Option<usize>,
 }
 
 /// A wait inserted before one of a robot's moves.
@@ -88,6 +118,50 @@ pub struct Delay {
     pub nodes: (usize, usize),
     /// How long it waits.
     pub duration: f64,
+}
+
+impl Delay {
+    /// The waits of `legs` on the routes `routes`, robot by robot, leg by leg.
+    pub fn of_legs(routes: &[Vec<usize>], legs: &[Arc<Vec<Leg>>]) -> Vec<Delay> {
+        let mut out = Vec::new();
+        for (r, list) in legs.iter().enumerate() {
+            let nodes = route_nodes(routes.get(r).map_or(&[][..], Vec::as_slice));
+            for (m, leg) in list.iter().enumerate().filter(|(_, l)| l.wait > 0.0) {
+                out.push(Delay {
+                    robot: r,
+                    before_move: m,
+                    nodes: (nodes[m], nodes[(m + 1).min(nodes.len() - 1)]),
+                    duration: leg.wait,
+                });
+            }
+        }
+        out
+    }
+
+    /// Legs with these waits, each added to its leg's wait, and nothing else changed.
+    pub fn legs(robots: usize, delays: &[Delay]) -> Legs {
+        let mut legs = default_legs(robots);
+        for d in delays {
+            let old = leg(&legs, d.robot, d.before_move).clone();
+            let new = Leg {
+                wait: old.wait + d.duration,
+                ..old
+            };
+            legs = with_leg(&legs, d.robot, d.before_move, new);
+        }
+        legs
+    }
+}
+
+/// The nodes a route visits: home, its tasks (`1 + t`), home; just home for no task.
+pub fn route_nodes(route: &[usize]) -> Vec<usize> {
+    if route.is_empty() {
+        return vec![0, 0];
+    }
+    std::iter::once(0)
+        .chain(route.iter().map(|t| t + 1))
+        .chain([0])
+        .collect()
 }
 
 /// One robot's timed plan.
@@ -116,19 +190,22 @@ impl RobotSchedule {
 /// The timed schedule of every robot.
 #[derive(Clone, Debug)]
 pub struct Schedule {
-    /// One per robot, in the cell's order.
-    pub robots: Vec<RobotSchedule>,
+    /// One per robot, in the cell's order (shared between schedules that differ in other
+    /// robots only).
+    pub robots: Vec<Arc<RobotSchedule>>,
     /// When the last robot is back home.
     pub makespan: f64,
 }
 
-/// Planned and certified moves, kept for reuse across iterations of the loop. A move and
-/// its reverse share one plan.
+type Planned = Result<Arc<PlannedMove>, MoveFailure>;
+
+/// Planned and certified moves, kept for reuse across iterations of the loop and shared by
+/// threads. A move and its reverse share one plan.
 pub struct MoveCache<'a> {
     cell: &'a Cell,
     planner: PlannerOptions,
     obstacles: Vec<Body>,
-    moves: HashMap<(usize, usize, usize), Result<Arc<PlannedMove>, MoveFailure>>,
+    moves: Mutex<HashMap<(usize, usize, usize), (Planned, Option<Planned>)>>,
 }
 
 impl<'a> MoveCache<'a> {
@@ -138,29 +215,54 @@ impl<'a> MoveCache<'a> {
             cell,
             planner,
             obstacles: cell.obstacle_bodies(),
-            moves: HashMap::new(),
+            moves: Mutex::new(HashMap::new()),
         }
     }
 
-    /// Robot `r`'s certified move between two nodes, planned on first use.
-    pub fn get(
-        &mut self,
-        r: usize,
-        from: usize,
-        to: usize,
-    ) -> Result<Arc<PlannedMove>, MoveFailure> {
+    /// The cell's obstacles as checker bodies.
+    pub fn obstacles(&self) -> &[Body] {
+        &self.obstacles
+    }
+
+    /// The planner's settings.
+    pub fn planner(&self) -> &PlannerOptions {
+        &self.planner
+    }
+
+    /// Robot `r`'s certified move between two nodes, planned on first use. Planning runs
+    /// outside the lock; the planner is deterministic, so two threads planning the same
+    /// move at once find the same one.
+    pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
         let (a, b) = (from.min(to), from.max(to));
-        let (cell, planner, obstacles) = (self.cell, &self.planner, &self.obstacles);
-        let planned = self
-            .moves
-            .entry((r, a, b))
-            .or_insert_with(|| certified_move(cell, r, a, b, planner, obstacles).map(Arc::new))
-            .clone()?;
-        Ok(if from <= to {
-            planned
-        } else {
-            Arc::new(reversed(&planned))
-        })
+        let key = (r, a, b);
+        let known = self.lock().get(&key).cloned();
+        let (forward, backward) = match known {
+            Some(entry) => entry,
+            None => {
+                let planned = certified_move(self.cell, r, a, b, &self.planner, &self.obstacles)
+                    .map(Arc::new);
+                let entry = (planned, None);
+                self.lock().entry(key).or_insert(entry).clone()
+            }
+        };
+        if from <= to {
+            return forward;
+        }
+        if let Some(back) = backward {
+            return back;
+        }
+        let back = forward.map(|m| Arc::new(reversed(&m)));
+        if let Some(entry) = self.lock().get_mut(&key) {
+            entry.1 = Some(back.clone());
+        }
+        back
+    }
+
+    fn lock(
+        &self,
+    ) -> std::sync::MutexGuard<'_, HashMap<(usize, usize, usize), (Planned, Option<Planned>)>> {
+        // A panic while holding the lock leaves the map consistent: entries are whole.
+        self.moves.lock().unwrap_or_else(|e| e.into_inner())
     }
 }
 
@@ -242,20 +344,27 @@ impl BuildError {
 }
 
 impl Schedule {
-    /// Times every robot's route: from home at t = 0, each move as planned, each task held
-    /// for its duration, back home; `delays` insert waits before given moves.
+    /// Times every robot's route: from home at t = 0, each leg (by default the planned
+    /// move, at once; see [`Leg`]), each task held for its duration, back home.
     pub fn build(
         cell: &Cell,
         routes: &[Vec<usize>],
-        delays: &[Delay],
-        moves: &mut MoveCache,
+        legs: &[Arc<Vec<Leg>>],
+        moves: &MoveCache,
     ) -> Result<Schedule, BuildError> {
-        let mut robots = Vec::with_capacity(routes.len());
-        for (r, route) in routes.iter().enumerate() {
-            robots.push(build_robot(cell, r, route, delays, moves)?);
-        }
+        let robots = (0..routes.len())
+            .map(|r| {
+                let list = legs.get(r).map_or(&[][..], |l| l.as_slice());
+                RobotSchedule::build(cell, r, &routes[r], list, moves).map(Arc::new)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Schedule::of(robots))
+    }
+
+    /// The schedule of these robot schedules, in robot order.
+    pub fn of(robots: Vec<Arc<RobotSchedule>>) -> Schedule {
         let makespan = robots.iter().map(|s| s.end).fold(0.0, f64::max);
-        Ok(Schedule { robots, makespan })
+        Schedule { robots, makespan }
     }
 
     /// The schedule as a scene for the checker (and `--export-scene`): robots with their
@@ -355,126 +464,184 @@ fn pose_at(samples: &[Sample], t: f64) -> Pose {
         .pose_at(t)
 }
 
-/// Appends a rest at the robot's current pose, unless it falls on the last sample's time
-/// (a zero or negligible hold: the pose is the same either way).
-fn hold(samples: &mut Vec<Sample>, rest: Sample) {
-    if rest.t > samples.last().expect("starts with a sample").t {
-        samples.push(rest);
+impl RobotSchedule {
+    /// Times robot `r`'s route with its legs (missing ones default): from home at t = 0,
+    /// every leg, every task held for its duration, back home. A robot without tasks stays
+    /// home, unless its one leg is an excursion from home to home.
+    pub fn build(
+        cell: &Cell,
+        r: usize,
+        route: &[usize],
+        legs: &[Leg],
+        moves: &MoveCache,
+    ) -> Result<RobotSchedule, BuildError> {
+        let mut line = Timeline::start(cell, r);
+        let nodes = route_nodes(route);
+        let leg_count = if route.is_empty() {
+            legs.len().min(1)
+        } else {
+            nodes.len() - 1
+        };
+        for m in 0..leg_count {
+            let (from, to) = (nodes[m], nodes[m + 1]);
+            let leg = legs.get(m).unwrap_or(&Leg::DEFAULT);
+            line.wait(leg.wait, Activity::Wait(from), m)?;
+            match &leg.pieces {
+                None => {
+                    let planned = moves.get(r, from, to).map_err(|why| BuildError::Move {
+                        robot: r,
+                        from,
+                        to,
+                        why,
+                    })?;
+                    line.go(&planned, Activity::Move { from, to }, m)?;
+                }
+                Some(pieces) => {
+                    for piece in pieces.iter() {
+                        match piece {
+                            Piece::Go { motion, scale } if *scale == 1.0 => {
+                                line.go(motion, Activity::Move { from, to }, m)?
+                            }
+                            Piece::Go { motion, scale } => {
+                                line.go(&motion.slowed(*scale), Activity::Move { from, to }, m)?
+                            }
+                            Piece::Hold { duration, reason } => {
+                                let activity = match reason {
+                                    HoldReason::Pause => Activity::Pause { from, to },
+                                    HoldReason::Park => Activity::Park { from, to },
+                                };
+                                line.wait(*duration, activity, m)?;
+                            }
+                        }
+                    }
+                }
+            }
+            if to != 0 {
+                let task = to - 1;
+                line.wait(cell.tasks[task].duration, Activity::Work(task), m)?;
+            }
+        }
+        Ok(line.finish(route))
     }
 }
 
-fn build_robot(
-    cell: &Cell,
-    r: usize,
-    route: &[usize],
-    delays: &[Delay],
-    moves: &mut MoveCache,
-) -> Result<RobotSchedule, BuildError> {
-    let home = node_pose(cell, r, 0);
-    let rest = |t: f64, pose: Pose| Sample {
-        t,
-        pos: pose.pos,
-        theta: pose.theta,
-        vel: Vec2::zeros(),
-        omega: 0.0,
-    };
-    let mut samples = vec![rest(0.0, home)];
-    let mut segments = Vec::with_capacity(3 * route.len() + 2);
-    let mut path = vec![home.pos];
-    let mut now = 0.0;
-    let mut theta = home.theta;
-    // A robot without tasks stays home: no move, not even home to home.
-    let nodes: Vec<usize> = if route.is_empty() {
-        Vec::new()
-    } else {
-        std::iter::once(0)
-            .chain(route.iter().map(|t| t + 1))
-            .chain([0])
-            .collect()
-    };
-    let precision = |time: f64| BuildError::Precision { robot: r, time };
-    for (m, pair) in nodes.windows(2).enumerate() {
-        let (from, to) = (pair[0], pair[1]);
-        let wait: f64 = delays
-            .iter()
-            .filter(|d| d.robot == r && d.before_move == m)
-            .map(|d| d.duration)
-            .sum();
-        if wait > 0.0 {
-            let pose = Pose {
-                pos: node_pose(cell, r, from).pos,
-                theta,
-            };
-            segments.push(Segment {
-                activity: Activity::Wait(from),
-                start: now,
-                end: now + wait,
-                delayable_move: Some(m),
-            });
-            now += wait;
-            hold(&mut samples, rest(now, pose));
-        }
-        let planned = moves.get(r, from, to).map_err(|why| BuildError::Move {
+/// A robot's schedule under construction: samples, segments and path so far.
+struct Timeline {
+    robot: usize,
+    samples: Vec<Sample>,
+    segments: Vec<Segment>,
+    path: Vec<Vec2>,
+    now: f64,
+    /// The angle so far, continuous: a move planned from a node's angle starts at that angle
+    /// plus the whole turns the robot has made.
+    theta: f64,
+}
+
+impl Timeline {
+    fn start(cell: &Cell, r: usize) -> Timeline {
+        let home = node_pose(cell, r, 0);
+        Timeline {
             robot: r,
-            from,
-            to,
-            why,
-        })?;
-        // Keep the angle continuous: a planned move starts at the node's angle, the robot
-        // may have arrived at the same angle plus turns.
-        let turns = TAU * ((theta - planned.samples[0].theta) / TAU).round();
+            samples: vec![rest(0.0, home.pos, home.theta)],
+            segments: Vec::new(),
+            path: vec![home.pos],
+            now: 0.0,
+            theta: home.theta,
+        }
+    }
+
+    fn precision(&self, time: f64) -> BuildError {
+        BuildError::Precision {
+            robot: self.robot,
+            time,
+        }
+    }
+
+    /// Stands still for `duration` doing `activity`. A positive hold must leave a trace on
+    /// the time axis: one that f64 rounds away would vanish from the schedule.
+    fn wait(&mut self, duration: f64, activity: Activity, leg: usize) -> Result<(), BuildError> {
+        if duration <= 0.0 {
+            if activity_is_task(activity) {
+                self.push(activity, self.now, leg);
+            }
+            return Ok(());
+        }
+        let end = self.now + duration;
+        if end <= self.now || !end.is_finite() {
+            return Err(self.precision(self.now));
+        }
+        let pos = self.samples.last().expect("starts with a sample").pos;
+        self.push(activity, end, leg);
+        self.samples.push(rest(end, pos, self.theta));
+        Ok(())
+    }
+
+    /// Makes a planned motion from where the robot is.
+    fn go(
+        &mut self,
+        planned: &PlannedMove,
+        activity: Activity,
+        leg: usize,
+    ) -> Result<(), BuildError> {
+        let turns = TAU * ((self.theta - planned.samples[0].theta) / TAU).round();
         // The first sample is where the robot already is; every later one must come later
         // on the time axis, or the move would silently vanish.
         for s in &planned.samples[1..] {
-            let t = now + s.t;
-            if t <= samples.last().expect("starts with a sample").t {
-                return Err(precision(t));
+            let t = self.now + s.t;
+            if t <= self.samples.last().expect("starts with a sample").t {
+                return Err(self.precision(t));
             }
-            samples.push(Sample {
+            self.samples.push(Sample {
                 t,
                 theta: s.theta + turns,
                 ..*s
             });
         }
-        segments.push(Segment {
-            activity: Activity::Move { from, to },
-            start: now,
-            end: now + planned.duration,
-            delayable_move: Some(m),
+        self.path.extend(planned.path.iter().skip(1));
+        self.theta = planned.samples.last().expect("a move has samples").theta + turns;
+        self.push(activity, self.now + planned.duration, leg);
+        Ok(())
+    }
+
+    fn push(&mut self, activity: Activity, end: f64, leg: usize) {
+        self.segments.push(Segment {
+            activity,
+            start: self.now,
+            end,
+            leg: Some(leg),
         });
-        path.extend(planned.path.iter().skip(1));
-        now += planned.duration;
-        theta = planned.samples.last().expect("a move has samples").theta + turns;
-        if to != 0 {
-            let task = to - 1;
-            let duration = cell.tasks[task].duration;
-            segments.push(Segment {
-                activity: Activity::Work(task),
-                start: now,
-                end: now + duration,
-                delayable_move: Some(m),
-            });
-            now += duration;
-            let pose = Pose {
-                pos: node_pose(cell, r, to).pos,
-                theta,
-            };
-            hold(&mut samples, rest(now, pose));
+        self.now = end;
+    }
+
+    fn finish(mut self, route: &[usize]) -> RobotSchedule {
+        // The last sample is the arrival home (or the start, for a robot that stays home).
+        let end = self.samples.last().expect("starts with a sample").t;
+        self.segments.push(Segment {
+            activity: Activity::Done,
+            start: end,
+            end: f64::INFINITY,
+            leg: None,
+        });
+        RobotSchedule {
+            route: route.to_vec(),
+            segments: self.segments,
+            samples: self.samples,
+            path: self.path,
+            end,
         }
     }
-    // The last sample is the arrival home (or the start, for an empty route).
-    let end = samples.last().expect("starts with a sample").t;
-    segments.push(Segment {
-        activity: Activity::Done,
-        start: end,
-        end: f64::INFINITY,
-        delayable_move: None,
-    });
-    Ok(RobotSchedule {
-        route: route.to_vec(),
-        segments,
-        samples,
-        path,
-        end,
-    })
+}
+
+fn activity_is_task(a: Activity) -> bool {
+    matches!(a, Activity::Work(_))
+}
+
+fn rest(t: f64, pos: Vec2, theta: f64) -> Sample {
+    Sample {
+        t,
+        pos,
+        theta,
+        vel: Vec2::zeros(),
+        omega: 0.0,
+    }
 }

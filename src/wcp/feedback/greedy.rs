@@ -1,171 +1,15 @@
-//! The loop of the Work-Cell Problem: sequence, schedule, check, feed the first collision
-//! back, until the schedule is collision-free.
+//! The greedy loop: each round, the first collision is removed by the better of two
+//! remedies, re-sequencing with the colliding steps forbidden or one robot waiting at a
+//! node, and the choice is never revisited. Kept as `--feedback greedy`, to compare the
+//! search against.
 
-use super::graph::{check_reachable, WcpGraph};
-use super::moves::MoveTable;
-use super::schedule::{Activity, BuildError, Collision, Delay, MoveCache, Schedule, Segment};
-use super::sequencer::{self, Conflict, Instance, SequencerError, SequencerOptions};
+use super::describe;
+use super::{build, sequencer_error, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
 use crate::cell::{Cell, InputError};
-use crate::collision::{check, CheckOptions, CheckReport};
-use crate::planning::PlannerOptions;
-use std::time::{Duration, Instant};
-
-/// Settings of a solve.
-#[derive(Clone, Debug)]
-pub struct SolveOptions {
-    /// Rounds of sequencing, checking and feedback before giving up.
-    pub max_iterations: usize,
-    /// The sequencer's settings, its seed among them.
-    pub sequencer: SequencerOptions,
-    /// The planner's settings.
-    pub planner: PlannerOptions,
-    /// The checker's settings for the schedules.
-    pub check: CheckOptions,
-}
-
-impl Default for SolveOptions {
-    fn default() -> Self {
-        SolveOptions {
-            max_iterations: 50,
-            sequencer: SequencerOptions::default(),
-            planner: PlannerOptions::default(),
-            check: CheckOptions::default(),
-        }
-    }
-}
-
-/// Progress of a solve, for a progress bar. Called from the solving thread, except
-/// `move_planned`, which planning threads call.
-pub trait Progress: Sync {
-    /// Planning starts: `total` moves to plan and certify.
-    fn planning(&self, _total: usize) {}
-    /// One more move planned.
-    fn move_planned(&self) {}
-    /// Round `k` (from 1) checked a schedule of this makespan.
-    fn iteration(&self, _k: usize, _makespan: f64, _collision: Option<&Collision>) {}
-}
-
-impl Progress for () {}
-
-/// Wall time spent in each stage.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StageTimes {
-    /// Planning and certifying every move.
-    pub planning: Duration,
-    /// Building the graph and the sequencer's instance.
-    pub graph: Duration,
-    /// Sequencer runs.
-    pub sequencing: Duration,
-    /// Timing the schedules (including moves planned on demand).
-    pub scheduling: Duration,
-    /// Collision checks of the schedules.
-    pub checking: Duration,
-}
-
-/// How one round's collision was removed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Remedy {
-    /// The sequencer re-planned with the colliding pair of steps forbidden.
-    Resequence,
-    /// A robot waits before one of its moves.
-    Delay(Delay),
-}
-
-/// One round of the loop.
-#[derive(Clone, Debug)]
-pub struct Iteration {
-    /// Makespan of the schedule checked in this round.
-    pub makespan: f64,
-    /// Its first collision, if any.
-    pub collision: Option<Collision>,
-    /// What was done about it (`None` in the last round).
-    pub remedy: Option<Remedy>,
-}
-
-/// The cell's moves and graph, ready for sequencing.
-pub struct Prepared {
-    /// Every robot's certified moves.
-    pub moves: MoveTable,
-    /// The work-cell graph.
-    pub graph: WcpGraph,
-    /// The sequencer's instance, read from the graph.
-    pub instance: Instance,
-    /// Time spent so far.
-    pub times: StageTimes,
-}
-
-/// A solve's result.
-#[derive(Clone, Debug)]
-pub struct Solved {
-    /// Each robot's tasks in order.
-    pub routes: Vec<Vec<usize>>,
-    /// Waits added by the loop.
-    pub delays: Vec<Delay>,
-    /// The final schedule.
-    pub schedule: Schedule,
-    /// The checker's report on the final schedule.
-    pub report: CheckReport,
-    /// True when the final schedule is certified collision-free.
-    pub collision_free: bool,
-    /// Every round, in order; the last one checked the final schedule.
-    pub iterations: Vec<Iteration>,
-    /// The collision-blind best sequences (the first round's).
-    pub blind_routes: Vec<Vec<usize>>,
-    /// Makespan of the collision-blind best schedule.
-    pub blind_makespan: f64,
-    /// Whether the sequencer proved that one optimal.
-    pub blind_optimal: bool,
-    /// Why the loop stopped without a collision-free schedule.
-    pub failure: Option<String>,
-    /// Wall time per stage.
-    pub times: StageTimes,
-}
-
-/// Plans and certifies every move, builds the graph and the sequencer's instance. A task
-/// that no allowed robot can reach is an input error.
-pub fn prepare(
-    cell: &Cell,
-    opts: &SolveOptions,
-    progress: &dyn Progress,
-) -> Result<Prepared, InputError> {
-    let mut times = StageTimes::default();
-    let clock = Instant::now();
-    progress.planning(move_count(cell));
-    let moves = MoveTable::build(cell, &opts.planner, &|| progress.move_planned());
-    check_reachable(cell, &moves)?;
-    times.planning = clock.elapsed();
-    let clock = Instant::now();
-    let graph = WcpGraph::new(cell, &moves);
-    let instance = graph.instance(cell).map_err(|e| sequencer_error(cell, e))?;
-    times.graph = clock.elapsed();
-    Ok(Prepared {
-        moves,
-        graph,
-        instance,
-        times,
-    })
-}
-
-fn move_count(cell: &Cell) -> usize {
-    (0..cell.robots.len())
-        .map(|r| {
-            let n = 1 + cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
-            n * (n - 1) / 2
-        })
-        .sum()
-}
-
-/// A sequencer error in the cell's terms.
-pub fn sequencer_error(cell: &Cell, e: SequencerError) -> InputError {
-    match e {
-        SequencerError::TaskUnassignable { task } => cell.error(
-            Some(&cell.tasks[task].name),
-            format!("tasks[{task}]"),
-            "no allowed robot can travel to this task and back home",
-        ),
-        other => cell.error(None, "", other),
-    }
-}
+use crate::collision::check;
+use crate::wcp::schedule::{Activity, Delay, MoveCache, Segment};
+use crate::wcp::sequencer::{self, Conflict};
+use std::time::Instant;
 
 /// Solves the cell: the loop of the module's documentation, at most
 /// `opts.max_iterations` rounds.
@@ -177,7 +21,8 @@ pub fn solve(
 ) -> Result<Solved, InputError> {
     let mut times = prepared.times;
     let inst = &prepared.instance;
-    let mut cache = MoveCache::new(cell, opts.planner);
+    let cache = MoveCache::new(cell, opts.planner);
+    let robots = cell.robots.len();
     let mut conflicts: Vec<Conflict> = Vec::new();
     let clock = Instant::now();
     let blind =
@@ -188,7 +33,7 @@ pub fn solve(
     let mut iterations = Vec::new();
     loop {
         let clock = Instant::now();
-        let schedule = build(cell, &routes, &delays, &mut cache)?;
+        let schedule = build(cell, &routes, &Delay::legs(robots, &delays), &cache)?;
         times.scheduling += clock.elapsed();
         let clock = Instant::now();
         let report = check(&schedule.scene(cell), &opts.check);
@@ -199,7 +44,7 @@ pub fn solve(
             Ok(Solved {
                 collision_free: failure.is_none(),
                 routes: routes.clone(),
-                delays: delays.clone(),
+                legs: Delay::legs(robots, &delays),
                 schedule: schedule.clone(),
                 report: report.clone(),
                 iterations,
@@ -269,16 +114,17 @@ pub fn solve(
                 let Some(full) = delay_until(
                     &schedule.robots[x].segments,
                     x,
-                    seg_x.delayable_move,
+                    seg_x.leg,
                     gone(&schedule.robots[y].segments, &seg_y),
                 ) else {
                     continue;
                 };
                 let delay =
-                    shortest_delay(cell, &routes, &delays, &mut cache, full, y, seg_x.end, opts)?;
+                    shortest_delay(cell, &routes, &delays, &cache, full, y, seg_x.end, opts)?;
                 let mut candidate = delays.clone();
                 candidate.push(delay);
-                let makespan = build(cell, &routes, &candidate, &mut cache)?.makespan;
+                let makespan =
+                    build(cell, &routes, &Delay::legs(robots, &candidate), &cache)?.makespan;
                 if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                     best = Some(Candidate {
                         makespan,
@@ -335,7 +181,7 @@ fn shortest_delay(
     cell: &Cell,
     routes: &[Vec<usize>],
     delays: &[Delay],
-    cache: &mut MoveCache,
+    cache: &MoveCache,
     full: Delay,
     other: usize,
     segment_end: f64,
@@ -348,7 +194,7 @@ fn shortest_delay(
         };
         let mut trial = delays.to_vec();
         trial.push(delay);
-        let schedule = build(cell, routes, &trial, cache)?;
+        let schedule = build(cell, routes, &Delay::legs(cell.robots.len(), &trial), cache)?;
         let report = check(&schedule.pair_scene(cell, full.robot, other), &opts.check);
         // The pair must not meet while the conflicting activity lasts, nor later with one of
         // them already home for good: no wait could separate them then.
@@ -383,15 +229,10 @@ fn gone(segments: &[Segment], seg: &Segment) -> f64 {
 }
 
 /// A wait that makes robot `x` start move `m` when the other robot's activity ends.
-fn delay_until(
-    segments: &[super::schedule::Segment],
-    x: usize,
-    m: Option<usize>,
-    other_end: f64,
-) -> Option<Delay> {
+fn delay_until(segments: &[Segment], x: usize, m: Option<usize>, other_end: f64) -> Option<Delay> {
     let m = m?;
     let (start, nodes) = segments.iter().find_map(|s| match s.activity {
-        Activity::Move { from, to } if s.delayable_move == Some(m) => Some((s.start, (from, to))),
+        Activity::Move { from, to } if s.leg == Some(m) => Some((s.start, (from, to))),
         _ => None,
     })?;
     let duration = other_end - start;
@@ -401,46 +242,4 @@ fn delay_until(
         nodes,
         duration,
     })
-}
-
-fn build(
-    cell: &Cell,
-    routes: &[Vec<usize>],
-    delays: &[Delay],
-    cache: &mut MoveCache,
-) -> Result<Schedule, InputError> {
-    Schedule::build(cell, routes, delays, cache).map_err(|e| {
-        let robot = &cell.robots[e.robot()].name;
-        match e {
-            // The table certified every move the sequencer may choose: a failure here means
-            // the planner is not deterministic, a defect to report rather than hide.
-            BuildError::Move { .. } => cell.error(
-                Some(robot),
-                "",
-                format!(
-                    "internal error: a move certified before fails now: {}",
-                    e.reason(cell)
-                ),
-            ),
-            BuildError::Precision { .. } => cell.error(
-                Some(robot),
-                format!("robots[{}]", e.robot()),
-                e.reason(cell),
-            ),
-        }
-    })
-}
-
-/// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
-pub fn describe(cell: &Cell, c: &Collision) -> String {
-    let a = format!(
-        "{} ({})",
-        c.bodies[0],
-        c.segments.0.activity.describe(cell, c.robots.0)
-    );
-    let b = match (c.robots.1, c.segments.1) {
-        (Some(b), Some(s)) => format!("{} ({})", c.bodies[1], s.activity.describe(cell, b)),
-        _ => format!("obstacle {}", c.bodies[1]),
-    };
-    format!("{a} and {b} at t = {:.6}", c.time)
 }

@@ -1,0 +1,255 @@
+//! The loop of the Work-Cell Problem: sequence, schedule, check, feed the first collision
+//! back, until the schedule is collision-free.
+//!
+//! Two ways to feed a collision back: [`Feedback::Search`] (the default) searches over
+//! remedies best-first on makespan, in the manner of conflict-based search (see
+//! `search.rs`); [`Feedback::Greedy`] takes the best of two remedies each round and never
+//! looks back (see `greedy.rs`), kept to compare against.
+
+mod greedy;
+
+use super::graph::{check_reachable, WcpGraph};
+use super::legs::Legs;
+use super::moves::MoveTable;
+use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
+use super::sequencer::{Instance, SequencerError, SequencerOptions};
+use crate::cell::{Cell, InputError};
+use crate::collision::{CheckOptions, CheckReport};
+use crate::planning::PlannerOptions;
+use std::time::{Duration, Instant};
+
+/// How collisions are fed back.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Feedback {
+    /// Best-first search over remedies (`search.rs`).
+    #[default]
+    Search,
+    /// Each round, the better of re-sequencing and one wait at a node (`greedy.rs`).
+    Greedy,
+}
+
+/// Settings of a solve.
+#[derive(Clone, Debug)]
+pub struct SolveOptions {
+    /// Rounds of sequencing, checking and feedback before giving up (for the search: along
+    /// one branch).
+    pub max_iterations: usize,
+    /// How collisions are fed back.
+    pub feedback: Feedback,
+    /// The sequencer's settings, its seed among them.
+    pub sequencer: SequencerOptions,
+    /// The planner's settings.
+    pub planner: PlannerOptions,
+    /// The checker's settings for the schedules.
+    pub check: CheckOptions,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            max_iterations: 50,
+            feedback: Feedback::default(),
+            sequencer: SequencerOptions::default(),
+            planner: PlannerOptions::default(),
+            check: CheckOptions::default(),
+        }
+    }
+}
+
+/// Progress of a solve, for a progress bar. Called from the solving thread, except
+/// `move_planned`, which planning threads call.
+pub trait Progress: Sync {
+    /// Planning starts: `total` moves to plan and certify.
+    fn planning(&self, _total: usize) {}
+    /// One more move planned.
+    fn move_planned(&self) {}
+    /// Round `k` (from 1) checked a schedule of this makespan.
+    fn iteration(&self, _k: usize, _makespan: f64, _collision: Option<&Collision>) {}
+}
+
+impl Progress for () {}
+
+/// Wall time spent in each stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Planning and certifying every move.
+    pub planning: Duration,
+    /// Building the graph and the sequencer's instance.
+    pub graph: Duration,
+    /// Sequencer runs.
+    pub sequencing: Duration,
+    /// Timing the schedules (including moves planned on demand).
+    pub scheduling: Duration,
+    /// Collision checks of the schedules.
+    pub checking: Duration,
+}
+
+/// How one round's collision was removed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Remedy {
+    /// The sequencer re-planned with the colliding pair of steps forbidden.
+    Resequence,
+    /// A robot waits at a node before one of its moves.
+    Delay(Delay),
+}
+
+/// One round of the loop.
+#[derive(Clone, Debug)]
+pub struct Iteration {
+    /// Makespan of the schedule checked in this round.
+    pub makespan: f64,
+    /// Its first collision, if any.
+    pub collision: Option<Collision>,
+    /// What was done about it (`None` in the last round).
+    pub remedy: Option<Remedy>,
+}
+
+/// The cell's moves and graph, ready for sequencing.
+pub struct Prepared {
+    /// Every robot's certified moves.
+    pub moves: MoveTable,
+    /// The work-cell graph.
+    pub graph: WcpGraph,
+    /// The sequencer's instance, read from the graph.
+    pub instance: Instance,
+    /// Time spent so far.
+    pub times: StageTimes,
+}
+
+/// A solve's result.
+#[derive(Clone, Debug)]
+pub struct Solved {
+    /// Each robot's tasks in order.
+    pub routes: Vec<Vec<usize>>,
+    /// Every robot's legs as the loop changed them (waits, pauses, detours, parking).
+    pub legs: Legs,
+    /// The final schedule.
+    pub schedule: Schedule,
+    /// The checker's report on the final schedule.
+    pub report: CheckReport,
+    /// True when the final schedule is certified collision-free.
+    pub collision_free: bool,
+    /// Every round, in order; the last one checked the final schedule.
+    pub iterations: Vec<Iteration>,
+    /// The collision-blind best sequences (the first round's).
+    pub blind_routes: Vec<Vec<usize>>,
+    /// Makespan of the collision-blind best schedule.
+    pub blind_makespan: f64,
+    /// Whether the sequencer proved that one optimal.
+    pub blind_optimal: bool,
+    /// Why the loop stopped without a collision-free schedule.
+    pub failure: Option<String>,
+    /// Wall time per stage.
+    pub times: StageTimes,
+}
+
+/// Plans and certifies every move, builds the graph and the sequencer's instance. A task
+/// that no allowed robot can reach is an input error.
+pub fn prepare(
+    cell: &Cell,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Prepared, InputError> {
+    let mut times = StageTimes::default();
+    let clock = Instant::now();
+    progress.planning(move_count(cell));
+    let moves = MoveTable::build(cell, &opts.planner, &|| progress.move_planned());
+    check_reachable(cell, &moves)?;
+    times.planning = clock.elapsed();
+    let clock = Instant::now();
+    let graph = WcpGraph::new(cell, &moves);
+    let instance = graph.instance(cell).map_err(|e| sequencer_error(cell, e))?;
+    times.graph = clock.elapsed();
+    Ok(Prepared {
+        moves,
+        graph,
+        instance,
+        times,
+    })
+}
+
+fn move_count(cell: &Cell) -> usize {
+    (0..cell.robots.len())
+        .map(|r| {
+            let n = 1 + cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
+            n * (n - 1) / 2
+        })
+        .sum()
+}
+
+/// A sequencer error in the cell's terms.
+pub fn sequencer_error(cell: &Cell, e: SequencerError) -> InputError {
+    match e {
+        SequencerError::TaskUnassignable { task } => cell.error(
+            Some(&cell.tasks[task].name),
+            format!("tasks[{task}]"),
+            "no allowed robot can travel to this task and back home",
+        ),
+        other => cell.error(None, "", other),
+    }
+}
+
+/// Solves the cell: sequences it collision-blind, then feeds collisions back as
+/// `opts.feedback` says, until the checker certifies a schedule or the limits are reached.
+pub fn solve(
+    cell: &Cell,
+    prepared: &Prepared,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Solved, InputError> {
+    match opts.feedback {
+        Feedback::Greedy | Feedback::Search => greedy::solve(cell, prepared, opts, progress),
+    }
+}
+
+impl Solved {
+    /// The waits at nodes of the final schedule.
+    pub fn delays(&self) -> Vec<Delay> {
+        Delay::of_legs(&self.routes, &self.legs)
+    }
+}
+
+/// The schedule of `routes` with `legs`; a failure is an error in the cell's terms.
+fn build(
+    cell: &Cell,
+    routes: &[Vec<usize>],
+    legs: &Legs,
+    cache: &MoveCache,
+) -> Result<Schedule, InputError> {
+    Schedule::build(cell, routes, legs, cache).map_err(|e| build_error(cell, e))
+}
+
+fn build_error(cell: &Cell, e: BuildError) -> InputError {
+    let robot = &cell.robots[e.robot()].name;
+    match e {
+        // The table certified every move the sequencer may choose: a failure here means
+        // the planner is not deterministic, a defect to report rather than hide.
+        BuildError::Move { .. } => cell.error(
+            Some(robot),
+            "",
+            format!(
+                "internal error: a move certified before fails now: {}",
+                e.reason(cell)
+            ),
+        ),
+        BuildError::Precision { .. } => cell.error(
+            Some(robot),
+            format!("robots[{}]", e.robot()),
+            e.reason(cell),
+        ),
+    }
+}
+
+/// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
+pub fn describe(cell: &Cell, c: &Collision) -> String {
+    let a = format!(
+        "{} ({})",
+        c.bodies[0],
+        c.segments.0.activity.describe(cell, c.robots.0)
+    );
+    let b = match (c.robots.1, c.segments.1) {
+        (Some(b), Some(s)) => format!("{} ({})", c.bodies[1], s.activity.describe(cell, b)),
+        _ => format!("obstacle {}", c.bodies[1]),
+    };
+    format!("{a} and {b} at t = {:.6}", c.time)
+}
