@@ -68,9 +68,12 @@ enum Command {
         /// Seed of the sequencer's search: the same seed gives the same schedule.
         #[arg(long, default_value_t = 0)]
         seed: u64,
-        /// Rounds of sequencing, checking and feedback before giving up.
-        #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u64).range(1..))]
+        /// Rounds of sequencing, checking and feedback before giving up (for the search:
+        /// along one branch).
+        #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
         max_iterations: u64,
+        #[command(flatten)]
+        feedback: cli::solve::FeedbackArgs,
         /// Write the work-cell graph (nodes and each robot's travel times) to this file.
         #[arg(long)]
         export_graph: Option<PathBuf>,
@@ -162,12 +165,14 @@ fn main() -> ExitCode {
             out,
             seed,
             max_iterations,
+            feedback,
             export_graph,
         } => cli::solve::run_solve(
             &cell,
             &out,
             seed,
             max_iterations as usize,
+            &feedback,
             export_graph.as_deref(),
         ),
         Command::Evaluate {

@@ -3,6 +3,7 @@
 
 mod cell_file;
 mod error;
+mod legs_file;
 mod precision;
 mod scene_file;
 mod scene_writer;
@@ -10,6 +11,7 @@ mod sequences_file;
 
 pub use cell_file::{load_cell, parse_cell, Cell, CellObstacle, CellRobot, LoadedCell, Task};
 pub use error::InputError;
+pub use legs_file::{parse_legs, LegSpec, PieceSpec, PrimitiveSpec};
 pub use precision::{check_precision, MAX_COORDINATE_OVER_DELTA};
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
 pub use scene_writer::scene_document;

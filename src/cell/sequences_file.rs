@@ -11,6 +11,8 @@ pub struct Sequences {
     pub routes: Vec<Vec<usize>>,
     /// Waits, as a `solve` result lists them in `waits`.
     pub waits: Vec<Wait>,
+    /// Moves the feedback loop changed, as a `solve` result lists them in `legs`.
+    pub legs: Vec<super::LegSpec>,
 }
 
 /// A wait before one of a robot's moves.
@@ -34,8 +36,8 @@ pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError>
 /// order. A robot left out does no task. Refused: unknown robots or tasks, a task given to a
 /// robot not allowed to do it, a task listed twice, a task left out.
 ///
-/// A whole result also brings its `waits` (`[{"robot", "before_move", "duration"}]`), so
-/// that the schedule is the one `solve` certified.
+/// A whole result also brings its `waits` (`[{"robot", "before_move", "duration"}]`) and
+/// `legs` (see [`super::parse_legs`]), so that the schedule is the one `solve` certified.
 pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences, InputError> {
     let err = |body: Option<&str>, field: String, reason: String| {
         InputError::new(file, body, field, reason)
@@ -129,7 +131,15 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
         None | Some(Value::Null) => Vec::new(),
         Some(list) => waits(list, file, cell, &routes)?,
     };
-    Ok(Sequences { routes, waits })
+    let legs = match doc.get("legs").filter(|_| whole) {
+        None | Some(Value::Null) => Vec::new(),
+        Some(list) => super::parse_legs(list, file, cell, &routes)?,
+    };
+    Ok(Sequences {
+        routes,
+        waits,
+        legs,
+    })
 }
 
 /// An object's entries in document order, repeated keys kept.

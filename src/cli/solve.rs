@@ -5,10 +5,13 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use workcell::cell::{load_cell, load_sequences, scene_document, Cell, InputError};
+use workcell::wcp::remedy_json::legs_json;
 use workcell::wcp::report::{
     collision_json, rounds_json, schedule_json, sequences_json, summary, waits_json, ResultJson,
 };
-use workcell::wcp::{self, Collision, Iteration, Progress, Schedule, SolveOptions};
+use workcell::wcp::{
+    self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SolveOptions,
+};
 
 /// Output options shared by `solve` and `evaluate`.
 #[derive(clap::Args)]
@@ -22,6 +25,48 @@ pub struct Outputs {
     /// Draw the cell, the paths and the collisions fed back as an SVG picture.
     #[arg(long)]
     svg: Option<PathBuf>,
+}
+
+/// How `solve` feeds collisions back.
+#[derive(clap::Args)]
+pub struct FeedbackArgs {
+    /// `search`: best-first search over remedies; `greedy`: each round the better of
+    /// re-sequencing and one wait at a node, never revisited (to compare against).
+    #[arg(long, default_value = "search", value_parser = ["search", "greedy"])]
+    feedback: String,
+    /// The search's budget: most schedules checked.
+    #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u64).range(1..))]
+    search_nodes: u64,
+    /// The search's time limit, in seconds (a safety stop; the result is deterministic
+    /// when it is not reached).
+    #[arg(long, default_value_t = 60.0, value_parser = positive_seconds)]
+    search_time: f64,
+    /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
+    /// detour, step-aside (default: all).
+    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside"])]
+    remedies: Option<Vec<String>>,
+}
+
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v < 1e9 => Ok(v),
+        _ => Err(format!("expected a positive number of seconds, got `{s}`")),
+    }
+}
+
+impl FeedbackArgs {
+    fn apply(&self, opts: &mut SolveOptions) {
+        opts.feedback = match self.feedback.as_str() {
+            "greedy" => Feedback::Greedy,
+            _ => Feedback::Search,
+        };
+        opts.search.max_nodes = self.search_nodes as usize;
+        opts.search.time_limit = std::time::Duration::from_secs_f64(self.search_time);
+        if let Some(names) = &self.remedies {
+            opts.search.remedies = Remedies::of_names(names.iter().map(String::as_str))
+                .expect("clap accepts only the remedies' names");
+        }
+    }
 }
 
 /// A progress bar on stderr, shown only on a terminal and without `--json`.
@@ -74,6 +119,7 @@ pub fn run_solve(
     out: &Outputs,
     seed: u64,
     max_iterations: usize,
+    feedback: &FeedbackArgs,
     export_graph: Option<&Path>,
 ) -> Result<ExitCode, InputError> {
     let cell = load(path)?;
@@ -81,6 +127,7 @@ pub fn run_solve(
         max_iterations,
         ..SolveOptions::default()
     };
+    feedback.apply(&mut opts);
     opts.sequencer.seed = seed;
     let bar = Bar::new(out.json);
     // An error leaves no half-drawn bar above its message.
@@ -109,6 +156,7 @@ pub fn run_solve(
             sequences,
             iterations: solved.iterations.len(),
             waits: waits_json(&cell, &solved.delays()),
+            legs: legs_json(&cell, &solved.routes, &solved.legs),
             blind_sequences: Some(sequences_json(&cell, &solved.blind_routes)),
             blind_makespan: Some(solved.blind_makespan),
             blind_optimal: Some(solved.blind_optimal),
@@ -180,6 +228,7 @@ pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<Exit
             sequences,
             iterations: 1,
             waits: waits_json(&cell, &evaluated.delays),
+            legs: legs_json(&cell, &evaluated.routes, &evaluated.legs),
             blind_sequences: None,
             blind_makespan: None,
             blind_optimal: None,

@@ -86,6 +86,7 @@ mod timed;
 mod turn_apart;
 mod visibility;
 
+pub(crate) use minkowski::convex_hull;
 pub use profile::rest_to_rest_time;
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;

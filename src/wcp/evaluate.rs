@@ -1,10 +1,14 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
 use super::feedback::{SolveOptions, StageTimes};
+use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
-use crate::cell::{Cell, InputError, Sequences};
+use crate::cell::{Cell, InputError, PieceSpec, Sequences};
 use crate::collision::{check, CheckReport};
+use crate::geometry::Vec2;
+use crate::planning::{time_primitives, Primitive, RobotLimits};
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The verdict on given sequences.
@@ -16,6 +20,10 @@ pub struct Evaluated {
     pub report: CheckReport,
     /// Its first collision, if any.
     pub collision: Option<Collision>,
+    /// The routes, as given.
+    pub routes: Vec<Vec<usize>>,
+    /// The legs applied: the waits and changed moves, as given.
+    pub legs: Legs,
     /// The waits applied, as given.
     pub delays: Vec<Delay>,
     /// True when the schedule is certified collision-free.
@@ -24,10 +32,11 @@ pub struct Evaluated {
     pub times: StageTimes,
 }
 
-/// Times the given sequences (each robot's tasks and its waits, as
-/// [`crate::cell::parse_sequences`] gives them) and checks the schedule. A move the planner cannot make, or that the
-/// checker does not certify against the obstacles, is an input error about
-/// `sequences_file`.
+/// Times the given sequences (each robot's tasks, its waits and its changed moves, as
+/// [`crate::cell::parse_sequences`] gives them) and checks the schedule. A move the planner
+/// cannot make, or a changed move that does not start where the robot is or end where its
+/// leg ends, is an input error about `sequences_file`; one that comes too close to an
+/// obstacle or a robot is a collision the check reports.
 pub fn evaluate(
     cell: &Cell,
     sequences: &Sequences,
@@ -54,7 +63,20 @@ pub fn evaluate(
             }
         })
         .collect();
-    let legs = Delay::legs(cell.robots.len(), &delays);
+    let mut legs = Delay::legs(cell.robots.len(), &delays);
+    for spec in &sequences.legs {
+        let old = leg(&legs, spec.robot, spec.leg).clone();
+        let pieces: Vec<Piece> = spec
+            .pieces
+            .iter()
+            .map(|p| piece(cell, spec.robot, p, opts))
+            .collect();
+        let new = Leg {
+            pieces: Some(pieces.into()),
+            ..old
+        };
+        legs = with_leg(&legs, spec.robot, spec.leg, new);
+    }
     let schedule = Schedule::build(cell, routes, &legs, &cache).map_err(|e| {
         let r = e.robot();
         let robot = &cell.robots[r].name;
@@ -67,6 +89,13 @@ pub fn evaluate(
                 format!("{robot}[{k}]")
             }
             BuildError::Precision { .. } => robot.clone(),
+            BuildError::Discontinuous { leg, .. } => {
+                let k = sequences
+                    .legs
+                    .iter()
+                    .position(|l| l.robot == r && l.leg == leg);
+                k.map_or(robot.clone(), |k| format!("legs[{k}]"))
+            }
         };
         InputError::new(sequences_file, Some(robot), field, e.reason(cell))
     })?;
@@ -77,6 +106,8 @@ pub fn evaluate(
     let collision = schedule.collision(cell, &report);
     let collision_free = collision.is_none() && report.certified;
     Ok(Evaluated {
+        routes: routes.clone(),
+        legs,
         delays,
         schedule,
         report,
@@ -84,4 +115,44 @@ pub fn evaluate(
         collision_free,
         times,
     })
+}
+
+/// A piece as read, timed by the motion model at the robot's limits.
+fn piece(cell: &Cell, r: usize, spec: &PieceSpec, opts: &SolveOptions) -> Piece {
+    match spec {
+        PieceSpec::Hold { duration, park } => Piece::Hold {
+            duration: *duration,
+            reason: if *park {
+                HoldReason::Park
+            } else {
+                HoldReason::Pause
+            },
+        },
+        PieceSpec::Go { primitives, scale } => {
+            let robot = &cell.robots[r];
+            let limits = RobotLimits {
+                max_speed: robot.max_speed,
+                max_accel: robot.max_accel,
+                max_turn_rate: robot.max_turn_rate,
+            };
+            let primitives: Vec<Primitive> = primitives
+                .iter()
+                .map(|p| Primitive {
+                    path: p.path.iter().map(|&[x, y]| Vec2::new(x, y)).collect(),
+                    theta: p.theta,
+                    turn: p.turn,
+                })
+                .collect();
+            let motion = time_primitives(
+                robot.shape.radius(),
+                &limits,
+                &primitives,
+                opts.planner.samples_per_phase,
+            );
+            Piece::Go {
+                motion: Arc::new(motion),
+                scale: *scale,
+            }
+        }
+    }
 }

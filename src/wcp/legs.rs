@@ -85,7 +85,9 @@ pub fn leg(legs: &[Arc<Vec<Leg>>], r: usize, m: usize) -> &Leg {
 
 /// Default legs for `robots` robots.
 pub fn default_legs(robots: usize) -> Legs {
-    vec![Arc::new(Vec::new()); robots]
+    // One shared empty list: a robot's list is replaced, never changed in place.
+    let none = Arc::new(Vec::new());
+    (0..robots).map(|_| none.clone()).collect()
 }
 
 /// `legs` with robot `r`'s leg `m` replaced.

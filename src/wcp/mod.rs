@@ -16,14 +16,15 @@ mod graph;
 pub mod legs;
 mod moves;
 mod picture;
+pub mod remedy_json;
 pub mod report;
 mod schedule;
 pub mod sequencer;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
-    describe, prepare, sequencer_error, solve, Feedback, Iteration, Prepared, Progress, Remedy,
-    SolveOptions, Solved, StageTimes,
+    describe, prepare, sequencer_error, solve, Feedback, Iteration, Prepared, Progress, Remedies,
+    Remedy, SearchOptions, SolveOptions, Solved, StageTimes,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,

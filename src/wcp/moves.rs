@@ -135,7 +135,7 @@ pub fn certified_move(
 }
 
 /// The checker's verdict on one robot's samples against the obstacles.
-fn certify(
+pub(crate) fn certify(
     cell: &Cell,
     r: usize,
     samples: &[Sample],

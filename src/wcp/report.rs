@@ -1,8 +1,9 @@
 //! What `solve` and `evaluate` print: the contract's JSON (section 4, with optional fields
 //! added) and the human summary.
 
-use super::feedback::{describe, Iteration, Remedy, StageTimes};
+use super::feedback::{describe, Iteration, StageTimes};
 use super::moves::node_name;
+use super::remedy_json::{change_json, remedy_name, remedy_text, ChangeJson, LegJson};
 use super::schedule::{Activity, Collision, Delay, Schedule};
 use crate::cell::Cell;
 use crate::collision::Stats;
@@ -25,6 +26,10 @@ pub struct ResultJson<'a> {
     /// Waits of the final schedule, which `evaluate` applies when given this document.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub waits: Vec<WaitJson>,
+    /// Moves changed by the loop (pauses, slower moves, detours, parking), which `evaluate`
+    /// replays when given this document.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub legs: Vec<LegJson>,
     /// The collision-blind best sequences, before any feedback (solve only).
     #[serde(
         serialize_with = "ordered_optional_map",
@@ -75,11 +80,11 @@ pub struct RoundJson {
     pub makespan: f64,
     /// Its first collision.
     pub collision: Option<CollisionJson>,
-    /// `"resequence"`, `"delay"` or null.
+    /// `"resequence"`, `"delay"`, `"pause"`, `"slow"`, `"detour"`, `"step-aside"` or null.
     pub remedy: Option<&'static str>,
-    /// For a delay: who waits, where, how long.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub delay: Option<DelayJson>,
+    /// What the remedy changed, under its own name (`"delay": {...}`, `"pause": {...}`, ...).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub change: Option<ChangeJson>,
 }
 
 /// A wait of the final schedule in the JSON.
@@ -110,17 +115,6 @@ pub fn waits_json(cell: &Cell, delays: &[Delay]) -> Vec<WaitJson> {
             duration: d.duration,
         })
         .collect()
-}
-
-/// A delay in the JSON.
-#[derive(Serialize)]
-pub struct DelayJson {
-    /// The robot that waits.
-    pub robot: String,
-    /// The move it waits before, e.g. `move weld-1 -> weld-2`.
-    pub before: String,
-    /// How long.
-    pub duration: f64,
 }
 
 /// One activity in the JSON.
@@ -215,22 +209,8 @@ pub fn rounds_json(cell: &Cell, iterations: &[Iteration]) -> Vec<RoundJson> {
             iteration: k + 1,
             makespan: it.makespan,
             collision: it.collision.as_ref().map(|c| collision_json(cell, c)),
-            remedy: it.remedy.as_ref().map(|r| match r {
-                Remedy::Resequence => "resequence",
-                Remedy::Delay(_) => "delay",
-            }),
-            delay: match &it.remedy {
-                Some(Remedy::Delay(d)) => Some(DelayJson {
-                    robot: cell.robots[d.robot].name.clone(),
-                    before: Activity::Move {
-                        from: d.nodes.0,
-                        to: d.nodes.1,
-                    }
-                    .describe(cell, d.robot),
-                    duration: d.duration,
-                }),
-                _ => None,
-            },
+            remedy: it.remedy.as_ref().map(remedy_name),
+            change: it.remedy.as_ref().and_then(|r| change_json(cell, r)),
         })
         .collect()
 }
@@ -330,18 +310,7 @@ pub fn summary(
     for (k, it) in rounds.iter().enumerate() {
         let what = match (&it.collision, &it.remedy) {
             (None, _) => "collision-free".to_owned(),
-            (Some(c), Some(Remedy::Resequence)) => format!("{}; re-sequenced", describe(cell, c)),
-            (Some(c), Some(Remedy::Delay(d))) => format!(
-                "{}; {} waits {:.3} before its {}",
-                describe(cell, c),
-                cell.robots[d.robot].name,
-                d.duration,
-                Activity::Move {
-                    from: d.nodes.0,
-                    to: d.nodes.1
-                }
-                .describe(cell, d.robot)
-            ),
+            (Some(c), Some(r)) => format!("{}; {}", describe(cell, c), remedy_text(cell, r)),
             (Some(c), None) => format!("{}; not fixed", describe(cell, c)),
         };
         let _ = writeln!(out, "round {}: makespan {:.3}, {what}", k + 1, it.makespan);

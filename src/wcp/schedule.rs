@@ -180,6 +180,31 @@ pub struct RobotSchedule {
 }
 
 impl RobotSchedule {
+    /// The pose at time `t`, interpolated as the checker interpolates it.
+    pub fn pose_at(&self, t: f64) -> Pose {
+        let s = &self.samples;
+        let k = s.partition_point(|p| p.t <= t);
+        if k == 0 {
+            return Pose {
+                pos: s[0].pos,
+                theta: s[0].theta,
+            };
+        }
+        if k == s.len() {
+            let l = &s[s.len() - 1];
+            return Pose {
+                pos: l.pos,
+                theta: l.theta,
+            };
+        }
+        let (p, q) = (&s[k - 1], &s[k]);
+        let u = (t - p.t) / (q.t - p.t);
+        Pose {
+            pos: p.pos + (q.pos - p.pos) * u,
+            theta: p.theta + (q.theta - p.theta) * u,
+        }
+    }
+
     /// The segment under way at time `t`.
     pub fn segment_at(&self, t: f64) -> &Segment {
         let k = self.segments.partition_point(|s| s.end <= t);
@@ -198,6 +223,8 @@ pub struct Schedule {
 }
 
 type Planned = Result<Arc<PlannedMove>, MoveFailure>;
+/// Per (robot, lower node, higher node): the move that way, and its reverse once asked for.
+type Plans = HashMap<(usize, usize, usize), (Planned, Option<Planned>)>;
 
 /// Planned and certified moves, kept for reuse across iterations of the loop and shared by
 /// threads. A move and its reverse share one plan.
@@ -205,7 +232,7 @@ pub struct MoveCache<'a> {
     cell: &'a Cell,
     planner: PlannerOptions,
     obstacles: Vec<Body>,
-    moves: Mutex<HashMap<(usize, usize, usize), (Planned, Option<Planned>)>>,
+    moves: Mutex<Plans>,
 }
 
 impl<'a> MoveCache<'a> {
@@ -258,9 +285,7 @@ impl<'a> MoveCache<'a> {
         back
     }
 
-    fn lock(
-        &self,
-    ) -> std::sync::MutexGuard<'_, HashMap<(usize, usize, usize), (Planned, Option<Planned>)>> {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Plans> {
         // A panic while holding the lock leaves the map consistent: entries are whole.
         self.moves.lock().unwrap_or_else(|e| e.into_inner())
     }
@@ -301,6 +326,16 @@ pub enum BuildError {
         /// Why.
         why: MoveFailure,
     },
+    /// A changed leg's motion does not start where the robot is, or the leg does not end at
+    /// its end node.
+    Discontinuous {
+        /// The robot.
+        robot: usize,
+        /// The leg.
+        leg: usize,
+        /// When the robot would jump.
+        time: f64,
+    },
     /// At time `time`, f64 can no longer tell a robot's samples apart: durations and limits
     /// span too many orders of magnitude for one time axis.
     Precision {
@@ -315,7 +350,9 @@ impl BuildError {
     /// The robot concerned.
     pub fn robot(&self) -> usize {
         match self {
-            BuildError::Move { robot, .. } | BuildError::Precision { robot, .. } => *robot,
+            BuildError::Move { robot, .. }
+            | BuildError::Precision { robot, .. }
+            | BuildError::Discontinuous { robot, .. } => *robot,
         }
     }
 
@@ -332,6 +369,11 @@ impl BuildError {
                 cell.robots[*robot].name,
                 node_name(cell, *robot, *from),
                 node_name(cell, *robot, *to)
+            ),
+            BuildError::Discontinuous { leg, time, .. } => format!(
+                "its move {leg} is not continuous at t = {time}: each motion must start where \
+                 the robot is (same position, same angle up to whole turns) and the move must \
+                 end at its end node"
             ),
             BuildError::Precision { time, .. } => format!(
                 "at t = {time:e} the time steps of its moves fall below what f64 resolves there \
@@ -403,12 +445,9 @@ impl Schedule {
         let a = robot(&contact.bodies[0]).expect("the checker names a robot first");
         let b = robot(&contact.bodies[1]);
         let shape_a = &cell.robots[a].shape;
-        let pose_a = pose_at(&self.robots[a].samples, contact.time);
+        let pose_a = self.robots[a].pose_at(contact.time);
         let (shape_b, pose_b) = match b {
-            Some(b) => (
-                &cell.robots[b].shape,
-                pose_at(&self.robots[b].samples, contact.time),
-            ),
+            Some(b) => (&cell.robots[b].shape, self.robots[b].pose_at(contact.time)),
             None => {
                 let o = cell
                     .obstacles
@@ -456,12 +495,6 @@ pub struct Collision {
     pub segments: (Segment, Option<Segment>),
     /// Midpoint of the closest points at that time.
     pub point: Vec2,
-}
-
-fn pose_at(samples: &[Sample], t: f64) -> Pose {
-    Trajectory::new(samples.to_vec())
-        .expect("schedules sample increasing times")
-        .pose_at(t)
 }
 
 impl RobotSchedule {
@@ -516,6 +549,9 @@ impl RobotSchedule {
                     }
                 }
             }
+            if line.position() != node_pose(cell, r, to).pos {
+                return Err(line.jump(m));
+            }
             if to != 0 {
                 let task = to - 1;
                 line.wait(cell.tasks[task].duration, Activity::Work(task), m)?;
@@ -524,6 +560,10 @@ impl RobotSchedule {
         Ok(line.finish(route))
     }
 }
+
+/// How far (radians, relative to the angle's size) a motion's first angle may be from the
+/// robot's, up to whole turns: rounding of the turns added to keep the angle continuous.
+const ANGLE_JOIN_TOL: f64 = 1e-9;
 
 /// A robot's schedule under construction: samples, segments and path so far.
 struct Timeline {
@@ -576,6 +616,18 @@ impl Timeline {
         Ok(())
     }
 
+    fn position(&self) -> Vec2 {
+        self.samples.last().expect("starts with a sample").pos
+    }
+
+    fn jump(&self, leg: usize) -> BuildError {
+        BuildError::Discontinuous {
+            robot: self.robot,
+            leg,
+            time: self.now,
+        }
+    }
+
     /// Makes a planned motion from where the robot is.
     fn go(
         &mut self,
@@ -583,7 +635,12 @@ impl Timeline {
         activity: Activity,
         leg: usize,
     ) -> Result<(), BuildError> {
-        let turns = TAU * ((self.theta - planned.samples[0].theta) / TAU).round();
+        let first = &planned.samples[0];
+        let turns = TAU * ((self.theta - first.theta) / TAU).round();
+        let off = (self.theta - first.theta - turns).abs();
+        if first.pos != self.position() || off > ANGLE_JOIN_TOL * (1.0 + self.theta.abs()) {
+            return Err(self.jump(leg));
+        }
         // The first sample is where the robot already is; every later one must come later
         // on the time axis, or the move would silently vanish.
         for s in &planned.samples[1..] {

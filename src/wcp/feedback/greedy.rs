@@ -40,8 +40,9 @@ pub fn solve(
         times.checking += clock.elapsed();
         let collision = schedule.collision(cell, &report);
         progress.iteration(iterations.len() + 1, schedule.makespan, collision.as_ref());
-        let done = |failure: Option<String>, iterations, times| {
+        let done = |failure: Option<String>, iterations: Vec<Iteration>, times| {
             Ok(Solved {
+                nodes: iterations.len(),
                 collision_free: failure.is_none(),
                 routes: routes.clone(),
                 legs: Delay::legs(robots, &delays),

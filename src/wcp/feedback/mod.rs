@@ -6,7 +6,13 @@
 //! `search.rs`); [`Feedback::Greedy`] takes the best of two remedies each round and never
 //! looks back (see `greedy.rs`), kept to compare against.
 
+mod clearing;
 mod greedy;
+mod remedies;
+mod search;
+
+pub use remedies::Remedies;
+pub use search::SearchOptions;
 
 use super::graph::{check_reachable, WcpGraph};
 use super::legs::Legs;
@@ -15,6 +21,8 @@ use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
 use super::sequencer::{Instance, SequencerError, SequencerOptions};
 use crate::cell::{Cell, InputError};
 use crate::collision::{CheckOptions, CheckReport};
+use crate::geometry::Vec2;
+use crate::motion::Pose;
 use crate::planning::PlannerOptions;
 use std::time::{Duration, Instant};
 
@@ -36,6 +44,8 @@ pub struct SolveOptions {
     pub max_iterations: usize,
     /// How collisions are fed back.
     pub feedback: Feedback,
+    /// The search's budgets and remedies (for [`Feedback::Search`]).
+    pub search: SearchOptions,
     /// The sequencer's settings, its seed among them.
     pub sequencer: SequencerOptions,
     /// The planner's settings.
@@ -47,8 +57,9 @@ pub struct SolveOptions {
 impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
-            max_iterations: 50,
+            max_iterations: 200,
             feedback: Feedback::default(),
+            search: SearchOptions::default(),
             sequencer: SequencerOptions::default(),
             planner: PlannerOptions::default(),
             check: CheckOptions::default(),
@@ -91,6 +102,56 @@ pub enum Remedy {
     Resequence,
     /// A robot waits at a node before one of its moves.
     Delay(Delay),
+    /// A robot stops at a point of a move's path and waits there.
+    Pause {
+        /// The robot.
+        robot: usize,
+        /// The leg (move of its route) that pauses.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// Where it stops.
+        at: Vec2,
+        /// How long it waits there.
+        duration: f64,
+    },
+    /// A robot makes a move slower.
+    Slow {
+        /// The robot.
+        robot: usize,
+        /// The leg that is slowed down.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// How many times slower than planned.
+        factor: f64,
+    },
+    /// A robot makes a move by another way, around another robot.
+    Detour {
+        /// The robot.
+        robot: usize,
+        /// The leg re-planned.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// The robot gone around.
+        around: usize,
+        /// The new path of G.
+        path: Vec<Vec2>,
+    },
+    /// A robot steps aside to a parking pose, waits there and goes on.
+    StepAside {
+        /// The robot.
+        robot: usize,
+        /// The leg that goes by way of the parking pose.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// The parking pose.
+        park: Pose,
+        /// How long it waits there.
+        duration: f64,
+    },
 }
 
 /// One round of the loop.
@@ -139,6 +200,8 @@ pub struct Solved {
     pub blind_optimal: bool,
     /// Why the loop stopped without a collision-free schedule.
     pub failure: Option<String>,
+    /// Schedules checked: the rounds for the greedy loop, the search nodes for the search.
+    pub nodes: usize,
     /// Wall time per stage.
     pub times: StageTimes,
 }
@@ -198,7 +261,8 @@ pub fn solve(
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
     match opts.feedback {
-        Feedback::Greedy | Feedback::Search => greedy::solve(cell, prepared, opts, progress),
+        Feedback::Greedy => greedy::solve(cell, prepared, opts, progress),
+        Feedback::Search => search::solve(cell, prepared, opts, progress),
     }
 }
 
@@ -236,6 +300,12 @@ fn build_error(cell: &Cell, e: BuildError) -> InputError {
             Some(robot),
             format!("robots[{}]", e.robot()),
             e.reason(cell),
+        ),
+        // Remedies are made to start where the robot is: a jump is a defect of ours.
+        BuildError::Discontinuous { .. } => cell.error(
+            Some(robot),
+            "",
+            format!("internal error: {}", e.reason(cell)),
         ),
     }
 }

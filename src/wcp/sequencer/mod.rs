@@ -207,6 +207,34 @@ pub fn solve(
     finish(inst, conflicts, best.sequences(), false)
 }
 
+/// Re-plans `start` (one route per robot) for `conflicts`: as [`solve`] where the exact
+/// search applies, otherwise one chain of the iterated local search seeded with `start`
+/// (repairing a plan that violates a new conflict rather than planning anew: the feedback
+/// loop re-sequences many times, and each plan it departs from was searched in full).
+pub fn repair(
+    inst: &Instance,
+    conflicts: &[Conflict],
+    start: &[Vec<usize>],
+    opts: &SequencerOptions,
+) -> Result<Solution, SequencerError> {
+    inst.check()?;
+    check_conflicts(inst, conflicts)?;
+    let model = model::Model::new(inst, conflicts)?;
+    if exact::work(&model) <= opts.exact_limit as f64 {
+        return solve(inst, conflicts, opts);
+    }
+    let seeded = SequencerOptions {
+        restarts: 1,
+        ..opts.clone()
+    };
+    let best = ils::search(
+        &model,
+        &seeded,
+        Some(plan::Plan::from_sequences(&model, start)),
+    );
+    finish(inst, conflicts, best.sequences(), false)
+}
+
 fn finish(
     inst: &Instance,
     conflicts: &[Conflict],

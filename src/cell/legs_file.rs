@@ -1,0 +1,223 @@
+//! The `legs` of a solve result: the moves the feedback loop changed (paused, slowed,
+//! detoured, stepped aside), read back so that `evaluate` replays them exactly.
+//!
+//! ```json
+//! "legs": [{"robot": "R2", "move": 0, "on": "move home -> weld-4", "pieces": [
+//!   {"go": {"primitives": [{"path": [[1, 3], [2.5, 3]], "theta": 0, "turn": 0}], "scale": 1}},
+//!   {"hold": 1.5, "reason": "pause"},
+//!   {"go": {"primitives": [{"path": [[2.5, 3], [4, 3]], "theta": 0, "turn": 0}], "scale": 1}}]}]
+//! ```
+//!
+//! Each `go` is a chain of rest-to-rest primitives (G along `path`, the angle turning from
+//! `theta` by `turn`), timed by the motion model at the robot's limits and run `scale` (≥ 1)
+//! times slower; each `hold` stands still. `on` is for readers and is not checked.
+
+use super::{Cell, InputError};
+use serde_json::Value;
+use std::path::Path;
+
+/// A changed leg: robot `robot`'s move `leg` (0 out of home, k after its k-th task).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegSpec {
+    /// The robot.
+    pub robot: usize,
+    /// The move of its route.
+    pub leg: usize,
+    /// What it does instead of the planned move, in order.
+    pub pieces: Vec<PieceSpec>,
+}
+
+/// One piece of a changed leg.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PieceSpec {
+    /// A motion: primitives one after the other, `scale` times slower than timed.
+    Go {
+        /// The primitives.
+        primitives: Vec<PrimitiveSpec>,
+        /// Time stretch, at least 1.
+        scale: f64,
+    },
+    /// Standing still.
+    Hold {
+        /// How long, at least 0.
+        duration: f64,
+        /// Parked out of the way (`"park"`) rather than paused on the way (`"pause"`).
+        park: bool,
+    },
+}
+
+/// One rest-to-rest primitive as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrimitiveSpec {
+    /// Waypoints of G, at least two.
+    pub path: Vec<[f64; 2]>,
+    /// Angle at the start.
+    pub theta: f64,
+    /// Signed rotation over the primitive.
+    pub turn: f64,
+}
+
+/// Reads the `legs` list of a solve result, for the routes read from the same file.
+pub fn parse_legs(
+    list: &Value,
+    file: &Path,
+    cell: &Cell,
+    routes: &[Vec<usize>],
+) -> Result<Vec<LegSpec>, InputError> {
+    let Value::Array(items) = list else {
+        let reason = "expected a list of {\"robot\", \"move\", \"pieces\"}";
+        return Err(InputError::new(file, None, "legs", reason));
+    };
+    let mut out: Vec<LegSpec> = Vec::with_capacity(items.len());
+    for (k, item) in items.iter().enumerate() {
+        let at = format!("legs[{k}]");
+        let name = item.get("robot").and_then(Value::as_str);
+        let fail = |field: String, reason: String| InputError::new(file, name, field, reason);
+        let Some(robot) = name.and_then(|n| cell.robots.iter().position(|r| r.name == n)) else {
+            return Err(fail(
+                format!("{at}.robot"),
+                "must name a robot of the cell".into(),
+            ));
+        };
+        // A robot with no task may have one leg: an excursion from home and back.
+        let moves = routes[robot].len() + 1;
+        let leg = item.get("move").and_then(Value::as_u64);
+        let Some(leg) = leg.filter(|&m| m < moves as u64).map(|m| m as usize) else {
+            let reason = format!("must be a move of the robot: 0 to {}", moves - 1);
+            return Err(fail(format!("{at}.move"), reason));
+        };
+        if out.iter().any(|l| l.robot == robot && l.leg == leg) {
+            return Err(fail(
+                format!("{at}.move"),
+                "this move is listed twice".into(),
+            ));
+        }
+        let Some(Value::Array(list)) = item.get("pieces") else {
+            return Err(fail(
+                format!("{at}.pieces"),
+                "expected a list of pieces".into(),
+            ));
+        };
+        if list.is_empty() {
+            return Err(fail(
+                format!("{at}.pieces"),
+                "a leg needs at least one piece".into(),
+            ));
+        }
+        let pieces = list
+            .iter()
+            .enumerate()
+            .map(|(j, p)| piece(p, &format!("{at}.pieces[{j}]")).map_err(|(f, r)| fail(f, r)))
+            .collect::<Result<_, _>>()?;
+        out.push(LegSpec { robot, leg, pieces });
+    }
+    Ok(out)
+}
+
+type Failure = (String, String);
+
+fn number(
+    v: Option<&Value>,
+    field: String,
+    ok: impl Fn(f64) -> bool,
+    want: &str,
+) -> Result<f64, Failure> {
+    match v
+        .and_then(Value::as_f64)
+        .filter(|x| x.is_finite() && ok(*x))
+    {
+        Some(x) => Ok(x),
+        None => Err((field, format!("must be {want}"))),
+    }
+}
+
+fn piece(p: &Value, at: &str) -> Result<PieceSpec, Failure> {
+    if let Some(d) = p.get("hold") {
+        let duration = number(
+            Some(d),
+            format!("{at}.hold"),
+            |x| x >= 0.0,
+            "a non-negative number",
+        )?;
+        let park = match p.get("reason").and_then(Value::as_str) {
+            Some("park") => true,
+            Some("pause") | None => false,
+            Some(other) => {
+                return Err((
+                    format!("{at}.reason"),
+                    format!("`{other}` is not `pause` or `park`"),
+                ))
+            }
+        };
+        return Ok(PieceSpec::Hold { duration, park });
+    }
+    let Some(go) = p.get("go") else {
+        return Err((
+            at.to_owned(),
+            "expected {\"go\": ...} or {\"hold\": ...}".into(),
+        ));
+    };
+    let scale = number(
+        go.get("scale"),
+        format!("{at}.go.scale"),
+        |x| x >= 1.0,
+        "a number of at least 1 (slower, never faster)",
+    )?;
+    let Some(Value::Array(list)) = go.get("primitives") else {
+        return Err((
+            format!("{at}.go.primitives"),
+            "expected a list of primitives".into(),
+        ));
+    };
+    if list.is_empty() {
+        return Err((
+            format!("{at}.go.primitives"),
+            "a motion needs at least one primitive".into(),
+        ));
+    }
+    let mut primitives = Vec::with_capacity(list.len());
+    for (i, q) in list.iter().enumerate() {
+        let at = format!("{at}.go.primitives[{i}]");
+        let Some(Value::Array(points)) = q.get("path") else {
+            return Err((
+                format!("{at}.path"),
+                "expected a list of points [x, y]".into(),
+            ));
+        };
+        if points.len() < 2 {
+            return Err((
+                format!("{at}.path"),
+                "a path needs at least two points".into(),
+            ));
+        }
+        let path = points
+            .iter()
+            .enumerate()
+            .map(|(n, pt)| match pt.as_array().map(Vec::as_slice) {
+                Some([x, y]) => match (x.as_f64(), y.as_f64()) {
+                    (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
+                    _ => Err((
+                        format!("{at}.path[{n}]"),
+                        "coordinates must be finite numbers".into(),
+                    )),
+                },
+                _ => Err((format!("{at}.path[{n}]"), "expected a point [x, y]".into())),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let any = |_: f64| true;
+        let theta = number(
+            q.get("theta"),
+            format!("{at}.theta"),
+            any,
+            "a finite number",
+        )?;
+        let turn = number(
+            q.get("turn"),
+            format!("{at}.turn"),
+            |t| t.abs() <= std::f64::consts::PI,
+            "a turn of at most π",
+        )?;
+        primitives.push(PrimitiveSpec { path, theta, turn });
+    }
+    Ok(PieceSpec::Go { primitives, scale })
+}

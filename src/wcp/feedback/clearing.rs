@@ -1,0 +1,123 @@
+//! Whether a changed robot schedule clears another robot, and the least change that does.
+//!
+//! A remedy changes one leg of one robot, from the leg's start on; before that start both
+//! robots move as in the schedule the checker just examined, which it certified free up to
+//! the collision. So a candidate is judged on a window: from the changed leg's start to its
+//! end (the task it leads to included), with both trajectories cut to that window, and the
+//! checker must prove the pair at least δ apart throughout. What happens after the window is
+//! the next round's business.
+
+use crate::cell::Cell;
+use crate::collision::{check, Body, CheckOptions, Scene};
+use crate::motion::{Motion, Sample, Trajectory};
+use crate::wcp::schedule::RobotSchedule;
+
+/// Values of [`least`]'s first scan, evenly spaced over the bracket: clearing need not be
+/// monotone (a robot may pass before the other arrives, or only after it has gone), so the
+/// scan finds the first value that clears before bisection refines it.
+const SCAN: usize = 12;
+/// Bisection steps of [`least`] after the scan: the answer is within 2⁻⁸ of a scan step
+/// above the least value that clears.
+const BISECTIONS: usize = 8;
+
+/// True when the checker proves robots `x` and `y`, as scheduled, at least δ apart over
+/// `[t0, t1]`.
+pub(super) fn clears(
+    cell: &Cell,
+    (x, sx): (usize, &RobotSchedule),
+    (y, sy): (usize, &RobotSchedule),
+    (t0, t1): (f64, f64),
+    opts: &CheckOptions,
+) -> bool {
+    let body = |r: usize, s: &RobotSchedule| -> Option<Body> {
+        Some(Body {
+            name: cell.robots[r].name.clone(),
+            shape: cell.robots[r].shape.clone(),
+            motion: Motion::Sampled(Trajectory::new(window(&s.samples, t0, t1)).ok()?),
+        })
+    };
+    let (Some(a), Some(b)) = (body(x, sx), body(y, sy)) else {
+        return false;
+    };
+    let report = check(
+        &Scene {
+            delta: cell.delta,
+            bodies: vec![a, b],
+        },
+        opts,
+    );
+    match report.first_contact {
+        // The cut trajectories reach one sample beyond t1: a contact there is not ours.
+        Some(c) => c.time > t1,
+        None => report.certified,
+    }
+}
+
+/// The samples that pose the robot over `[t0, t1]`: from the last at or before `t0` to the
+/// first at or after `t1`. Between them the pose is interpolated exactly as in the whole.
+fn window(samples: &[Sample], t0: f64, t1: f64) -> Vec<Sample> {
+    let first = samples.partition_point(|s| s.t <= t0).saturating_sub(1);
+    let last = samples.partition_point(|s| s.t < t1).min(samples.len() - 1);
+    samples[first..=last].to_vec()
+}
+
+/// The least `p` in `(lo, hi]` for which `f(p)` succeeds, to within the resolution of a scan
+/// of [`SCAN`] values refined by [`BISECTIONS`] bisections, with what `f` gave there; `None`
+/// when no scanned value succeeds.
+pub(super) fn least<T>(lo: f64, hi: f64, f: impl Fn(f64) -> Option<T>) -> Option<(f64, T)> {
+    let step = (hi - lo) / SCAN as f64;
+    let (mut below, mut best) = (1..=SCAN).find_map(|k| {
+        let p = if k == SCAN { hi } else { lo + step * k as f64 };
+        f(p).map(|t| (p - step, (p, t)))
+    })?;
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (below + best.0);
+        if !(mid > below && mid < best.0) {
+            break;
+        }
+        match f(mid) {
+            Some(t) => best = (mid, t),
+            None => below = mid,
+        }
+    }
+    Some(best)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn least_finds_the_threshold_from_above() {
+        let (p, v) = least(0.0, 12.0, |p| (p >= 3.3).then_some(p * 2.0)).unwrap();
+        assert!((3.3..3.3 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
+        assert_eq!(v, 2.0 * p);
+        assert!(least(0.0, 10.0, |p| (p > 11.0).then_some(())).is_none());
+        // Not monotone: clears early (before the other robot arrives) and late; the scan
+        // finds the early window, not the threshold of the late one.
+        let (p, _) = least(0.0, 12.0, |p| {
+            ((1.5..2.5).contains(&p) || p > 9.0).then_some(())
+        })
+        .unwrap();
+        assert!((1.5..1.5 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
+    }
+
+    #[test]
+    fn window_keeps_the_samples_around_it() {
+        let s = |t: f64| Sample {
+            t,
+            pos: crate::geometry::Vec2::new(t, 0.0),
+            theta: 0.0,
+            vel: crate::geometry::Vec2::zeros(),
+            omega: 0.0,
+        };
+        let samples: Vec<Sample> = [0.0, 1.0, 2.0, 3.0, 4.0].map(s).to_vec();
+        let ts = |w: Vec<Sample>| w.iter().map(|s| s.t).collect::<Vec<_>>();
+        assert_eq!(ts(window(&samples, 1.5, 2.5)), vec![1.0, 2.0, 3.0]);
+        assert_eq!(ts(window(&samples, 1.0, 2.0)), vec![1.0, 2.0]);
+        assert_eq!(
+            ts(window(&samples, -1.0, 9.0)),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0]
+        );
+    }
+}

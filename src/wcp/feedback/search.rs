@@ -1,0 +1,547 @@
+//! Feedback as a search over remedies, in the manner of conflict-based search (Sharon et
+//! al., "Conflict-based search for optimal multi-agent pathfinding", 2015).
+//!
+//! A search node is a schedule: routes, the conflicts the sequencer must avoid, and every
+//! robot's legs. Every node is checked when it is made. A node whose schedule collides
+//! branches into its children, one per way out of that collision: either robot yielding by
+//! each remedy of `remedies.rs` (each the least of its kind that clears the pair), or the
+//! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
+//! child is costed lazily: it waits in the queue, and the sequencer runs only when it comes
+//! out.
+//!
+//! The order is that of limited discrepancy search (Harvey & Ginsberg, 1995), with the
+//! makespan as the heuristic: a node's children are ranked by makespan (then by how late
+//! their first collision comes), and a child other than the first is a *discrepancy*. Nodes
+//! with fewer discrepancies go first; among equals, those whose last discrepancy is nearest
+//! the root, then the deepest (depth first), then the smallest makespan. So the search first
+//! dives along the best child at every step to a certified schedule, after about as many
+//! rounds as there are conflicts, never a growing pile of waits (every child clears the
+//! collision it answers); then it dives again from each other choice, the choices near the
+//! root first, where a poor choice costs most. Nodes that cannot beat the best certified
+//! makespan are dropped; when none is left, the answer is the best the remedies can give.
+//! Ties go to the node made first, so that the result is the same on every run and on any
+//! number of threads: children are made and checked in parallel and collected in a fixed
+//! order.
+//!
+//! The budgets are a number of schedules checked and a time limit (a safety stop: a run
+//! that reaches it may differ from run to run). Without any certified schedule, the search
+//! reports the schedule whose first collision came latest, and that collision.
+
+use super::remedies::{candidates, Ctx, Remedies, View};
+use super::{build, sequencer_error, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
+use crate::cell::{Cell, InputError};
+use crate::collision::{check, CheckReport};
+use crate::wcp::legs::{default_legs, HoldReason, Legs, Piece};
+use crate::wcp::schedule::{Collision, MoveCache, RobotSchedule, Schedule};
+use crate::wcp::sequencer::{self, Conflict};
+use rayon::prelude::*;
+use std::cmp::{Ordering, Reverse};
+use std::collections::{BinaryHeap, HashSet};
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Budgets and remedies of the search.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SearchOptions {
+    /// Most schedules checked.
+    pub max_nodes: usize,
+    /// Most wall time spent searching (after the collision-blind sequencing).
+    pub time_limit: Duration,
+    /// The remedies the search may use.
+    pub remedies: Remedies,
+}
+
+impl Default for SearchOptions {
+    fn default() -> Self {
+        SearchOptions {
+            max_nodes: 5000,
+            time_limit: Duration::from_secs(60),
+            remedies: Remedies::ALL,
+        }
+    }
+}
+
+/// One schedule of the search.
+struct Node {
+    routes: Arc<Vec<Vec<usize>>>,
+    conflicts: Arc<Vec<Conflict>>,
+    legs: Legs,
+    /// The timed robots; empty while a re-sequencing child waits to be costed.
+    robots: Vec<Arc<RobotSchedule>>,
+    /// The schedule's makespan; for a re-sequencing not yet run, a lower bound of it.
+    makespan: f64,
+    parent: Option<usize>,
+    /// How the parent became this node.
+    remedy: Option<Remedy>,
+    depth: usize,
+    /// Choices other than the best child on the way from the root.
+    discrepancies: usize,
+    /// Depth of the last of them (0 for none).
+    deviated_at: usize,
+    /// A re-sequencing of the parent with this conflict added, not yet run.
+    pending: Option<Conflict>,
+    /// The checker's verdict, once checked.
+    outcome: Option<Outcome>,
+}
+
+/// The checker's verdict on a node.
+struct Outcome {
+    report: CheckReport,
+    collision: Option<Collision>,
+}
+
+impl Outcome {
+    fn certified_free(&self) -> bool {
+        self.collision.is_none() && !self.report.collision && self.report.certified
+    }
+}
+
+/// A total order on f64 keys.
+#[derive(Clone, Copy, PartialEq)]
+struct Ordered(f64);
+
+impl Eq for Ordered {}
+
+impl PartialOrd for Ordered {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Ordered {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.total_cmp(&other.0)
+    }
+}
+
+/// Queue order, smallest first: discrepancies, depth of the last one, minus the depth,
+/// makespan, and the node's index (older first).
+type Key = (usize, usize, Reverse<usize>, Ordered, usize);
+
+/// A re-sequencing runs this fraction (its inverse) of the sequencer's local search.
+const RESEQUENCE_SHARE: usize = 4;
+
+/// Two makespans closer than this (relative) are the same: a node must beat the bound by
+/// more to be worth checking.
+const SAME_MAKESPAN: f64 = 1e-9;
+
+struct Search<'a> {
+    cell: &'a Cell,
+    prepared: &'a Prepared,
+    opts: &'a SolveOptions,
+    ctx: Ctx<'a>,
+    nodes: Vec<Node>,
+    queue: BinaryHeap<Reverse<Key>>,
+    seen: HashSet<u128>,
+    times: super::StageTimes,
+    checked: usize,
+    /// The certified node of least makespan so far.
+    best: Option<usize>,
+    /// The colliding node whose first collision came latest.
+    furthest: Option<usize>,
+}
+
+/// Solves the cell by searching over remedies (see the module documentation).
+pub(super) fn solve(
+    cell: &Cell,
+    prepared: &Prepared,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Solved, InputError> {
+    let cache = MoveCache::new(cell, opts.planner);
+    let mut times = prepared.times;
+    let clock = Instant::now();
+    let blind = sequencer::solve(&prepared.instance, &[], &opts.sequencer)
+        .map_err(|e| sequencer_error(cell, e))?;
+    times.sequencing += clock.elapsed();
+    let mut search = Search {
+        cell,
+        prepared,
+        opts,
+        ctx: Ctx::new(cell, &cache, opts),
+        nodes: Vec::new(),
+        queue: BinaryHeap::new(),
+        seen: HashSet::new(),
+        times,
+        checked: 0,
+        best: None,
+        furthest: None,
+    };
+    let legs = default_legs(cell.robots.len());
+    search.seen.insert(fingerprint(&blind.sequences, &legs));
+    let root = build(cell, &blind.sequences, &legs, &cache)?;
+    let root = search.add(Node {
+        routes: Arc::new(blind.sequences.clone()),
+        conflicts: Arc::new(Vec::new()),
+        legs,
+        makespan: root.makespan,
+        robots: root.robots,
+        parent: None,
+        remedy: None,
+        depth: 0,
+        discrepancies: 0,
+        deviated_at: 0,
+        pending: None,
+        outcome: None,
+    });
+    search.check_all(&[root], progress);
+    if search.collision(root).is_some() {
+        search.enqueue(root);
+    }
+    let started = Instant::now();
+    let mut stop = None;
+    while let Some(Reverse((.., id))) = search.queue.pop() {
+        if search.checked >= opts.search.max_nodes {
+            stop = Some(format!(
+                "the search's budget of {} schedules",
+                opts.search.max_nodes
+            ));
+            break;
+        }
+        if started.elapsed() >= opts.search.time_limit {
+            stop = Some(format!(
+                "the search's time limit of {:.0} s",
+                opts.search.time_limit.as_secs_f64()
+            ));
+            break;
+        }
+        if !search.worth(id) {
+            continue;
+        }
+        if search.nodes[id].pending.is_some() {
+            // Costed and checked now; queued again to be expanded if it collides.
+            search.cost_resequencing(id, progress)?;
+            continue;
+        }
+        if search.nodes[id].depth + 1 < opts.max_iterations {
+            search.expand(id, progress);
+        }
+    }
+    let (id, failure) = match search.best {
+        Some(id) => (id, None),
+        None => {
+            let id = search.furthest.expect("the root collides");
+            let c = search.collision(id).expect("a colliding node");
+            let why = match stop {
+                Some(budget) => format!("no collision-free schedule within {budget}"),
+                None => format!(
+                    "no remedy separates the robots within {} rounds",
+                    opts.max_iterations
+                ),
+            };
+            let failure = format!(
+                "{why}; the schedule that got furthest collides: {}",
+                super::describe(cell, c)
+            );
+            (id, Some(failure))
+        }
+    };
+    Ok(search.finish(id, failure, &blind))
+}
+
+impl Search<'_> {
+    fn add(&mut self, node: Node) -> usize {
+        self.nodes.push(node);
+        self.nodes.len() - 1
+    }
+
+    fn collision(&self, id: usize) -> Option<&Collision> {
+        self.nodes[id].outcome.as_ref()?.collision.as_ref()
+    }
+
+    /// The node's place in the queue.
+    fn key(&self, id: usize) -> Key {
+        let n = &self.nodes[id];
+        (
+            n.discrepancies,
+            n.deviated_at,
+            Reverse(n.depth),
+            Ordered(n.makespan),
+            id,
+        )
+    }
+
+    fn enqueue(&mut self, id: usize) {
+        let key = self.key(id);
+        self.queue.push(Reverse(key));
+    }
+
+    /// Whether node `id` may still beat the best certified schedule.
+    fn worth(&self, id: usize) -> bool {
+        self.best.is_none_or(|b| {
+            let bound = self.nodes[b].makespan;
+            self.nodes[id].makespan < bound * (1.0 - SAME_MAKESPAN)
+        })
+    }
+
+    /// The sequencer's settings for a re-sequencing: the exact search as for the blind
+    /// schedule, a quarter of one chain of the local search from the parent's routes (a
+    /// re-sequencing is one of many children; the routes it departs from were searched in
+    /// full).
+    fn resequencer(&self) -> sequencer::SequencerOptions {
+        let full = &self.opts.sequencer;
+        sequencer::SequencerOptions {
+            iterations: (full.iterations / RESEQUENCE_SHARE).max(1),
+            ..full.clone()
+        }
+    }
+
+    /// Checks the nodes given (in parallel, results in order) and records the verdicts.
+    fn check_all(&mut self, ids: &[usize], progress: &dyn Progress) {
+        let clock = Instant::now();
+        let (cell, check_opts) = (self.cell, &self.opts.check);
+        let outcomes: Vec<Outcome> = ids
+            .par_iter()
+            .map(|&id| {
+                let schedule = Schedule::of(self.nodes[id].robots.clone());
+                let report = check(&schedule.scene(cell), check_opts);
+                let collision = schedule.collision(cell, &report);
+                Outcome { report, collision }
+            })
+            .collect();
+        self.times.checking += clock.elapsed();
+        for (&id, outcome) in ids.iter().zip(outcomes) {
+            self.checked += 1;
+            progress.iteration(
+                self.checked,
+                self.nodes[id].makespan,
+                outcome.collision.as_ref(),
+            );
+            let free = outcome.certified_free();
+            let colliding = outcome.collision.is_some();
+            self.nodes[id].outcome = Some(outcome);
+            if free {
+                if self.worth(id) {
+                    self.best = Some(id);
+                }
+            } else if colliding {
+                let t = self.collision(id).map(|c| c.time);
+                let later = self
+                    .furthest
+                    .and_then(|f| self.collision(f).map(|c| c.time))
+                    .is_none_or(|best| t.is_some_and(|t| t > best));
+                if later {
+                    self.furthest = Some(id);
+                }
+            }
+            // Otherwise a graze the checker can neither prove nor refute: a dead end.
+        }
+    }
+
+    /// Runs the re-sequencing that node `id` stands for and checks it, unless the sequencer
+    /// cannot avoid every conflict or the schedule is one seen before.
+    fn cost_resequencing(&mut self, id: usize, progress: &dyn Progress) -> Result<(), InputError> {
+        let conflict = self.nodes[id].pending.take().expect("pending");
+        let mut conflicts = (*self.nodes[id].conflicts).clone();
+        conflicts.push(conflict);
+        let clock = Instant::now();
+        let solution = sequencer::repair(
+            &self.prepared.instance,
+            &conflicts,
+            &self.nodes[id].routes,
+            &self.resequencer(),
+        )
+        .map_err(|e| sequencer_error(self.cell, e))?;
+        self.times.sequencing += clock.elapsed();
+        let legs = default_legs(self.cell.robots.len());
+        if solution.violations > 0 || !self.seen.insert(fingerprint(&solution.sequences, &legs)) {
+            return Ok(());
+        }
+        let clock = Instant::now();
+        let schedule = build(self.cell, &solution.sequences, &legs, self.ctx.moves)?;
+        self.times.scheduling += clock.elapsed();
+        let node = &mut self.nodes[id];
+        node.routes = Arc::new(solution.sequences);
+        node.conflicts = Arc::new(conflicts);
+        node.legs = legs;
+        node.makespan = schedule.makespan;
+        node.robots = schedule.robots;
+        if self.worth(id) {
+            self.check_all(&[id], progress);
+            if self.collision(id).is_some() {
+                self.enqueue(id);
+            }
+        }
+        Ok(())
+    }
+
+    /// Makes, checks and queues the children of colliding node `id`.
+    fn expand(&mut self, id: usize, progress: &dyn Progress) {
+        let clock = Instant::now();
+        let node = &self.nodes[id];
+        let c = node
+            .outcome
+            .as_ref()
+            .and_then(|o| o.collision.clone())
+            .expect("only colliding nodes are queued");
+        let view = View {
+            routes: &node.routes,
+            legs: &node.legs,
+            robots: &node.robots,
+        };
+        let children = candidates(&self.ctx, &view, &c);
+        self.times.scheduling += clock.elapsed();
+        let (routes, conflicts, robots, depth) = (
+            node.routes.clone(),
+            node.conflicts.clone(),
+            node.robots.clone(),
+            node.depth + 1,
+        );
+        let route_makespan = self.prepared.instance.makespan(&routes);
+        let (discrepancies, deviated_at) = (node.discrepancies, node.deviated_at);
+        let mut made = Vec::new();
+        for child in children {
+            if !self.seen.insert(fingerprint(&routes, &child.legs)) {
+                continue;
+            }
+            let mut timed = robots.clone();
+            timed[child.robot] = child.schedule;
+            let makespan = timed.iter().map(|s| s.end).fold(0.0, f64::max);
+            let child = self.add(Node {
+                routes: routes.clone(),
+                conflicts: conflicts.clone(),
+                legs: child.legs,
+                robots: timed,
+                makespan,
+                parent: Some(id),
+                remedy: Some(child.remedy),
+                depth,
+                discrepancies,
+                deviated_at,
+                pending: None,
+                outcome: None,
+            });
+            if self.worth(child) {
+                made.push(child);
+            }
+        }
+        // Checked first, then ranked: the best child continues the parent's line, every
+        // other one is a discrepancy.
+        self.check_all(&made, progress);
+        let later = |k: usize| self.collision(k).map_or(f64::INFINITY, |c| c.time);
+        let mut ranked: Vec<usize> = made.clone();
+        ranked.sort_by(|&a, &b| {
+            let (na, nb) = (&self.nodes[a], &self.nodes[b]);
+            na.makespan
+                .total_cmp(&nb.makespan)
+                .then(later(b).total_cmp(&later(a)))
+                .then(a.cmp(&b))
+        });
+        for &k in ranked.iter().skip(1) {
+            self.nodes[k].discrepancies += 1;
+            self.nodes[k].deviated_at = depth;
+        }
+        for k in ranked {
+            if self.collision(k).is_some() {
+                self.enqueue(k);
+            }
+        }
+        if let (true, Some(b), Some(sb)) = (
+            self.opts.search.remedies.resequence,
+            c.robots.1,
+            c.segments.1,
+        ) {
+            let conflict = Conflict {
+                a: (c.robots.0, c.segments.0.activity.step()),
+                b: (b, sb.activity.step()),
+            };
+            let pending = self.add(Node {
+                routes,
+                conflicts,
+                legs: default_legs(self.cell.robots.len()),
+                robots: Vec::new(),
+                // No re-sequencing beats the routes' own makespan, waits aside: the
+                // sequencer only gets more conflicts to avoid.
+                makespan: route_makespan,
+                parent: Some(id),
+                remedy: Some(Remedy::Resequence),
+                depth,
+                discrepancies: discrepancies + 1,
+                deviated_at: depth,
+                pending: Some(conflict),
+                outcome: None,
+            });
+            self.enqueue(pending);
+        }
+    }
+
+    /// The result for node `id`: its schedule, and the rounds from the root to it.
+    fn finish(self, id: usize, failure: Option<String>, blind: &sequencer::Solution) -> Solved {
+        let mut path = vec![id];
+        while let Some(p) = self.nodes[*path.last().unwrap()].parent {
+            path.push(p);
+        }
+        path.reverse();
+        let iterations = path
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| Iteration {
+                makespan: self.nodes[n].makespan,
+                collision: self.collision(n).cloned(),
+                remedy: path
+                    .get(k + 1)
+                    .and_then(|&next| self.nodes[next].remedy.clone()),
+            })
+            .collect();
+        let node = &self.nodes[id];
+        let report = node.outcome.as_ref().expect("checked").report.clone();
+        Solved {
+            routes: (*node.routes).clone(),
+            legs: node.legs.clone(),
+            schedule: Schedule::of(node.robots.clone()),
+            collision_free: failure.is_none(),
+            report,
+            iterations,
+            blind_routes: blind.sequences.clone(),
+            blind_makespan: blind.makespan,
+            blind_optimal: blind.optimal,
+            failure,
+            times: self.times,
+            nodes: self.checked,
+        }
+    }
+}
+
+/// A 128-bit digest of routes and legs: two schedules with the same digest are the same
+/// schedule (up to a collision of the hash, at odds of 2⁻¹²⁸ per pair).
+fn fingerprint(routes: &[Vec<usize>], legs: &Legs) -> u128 {
+    let digest = |salt: u64| {
+        // SipHash with fixed keys: the same on every run.
+        #[allow(deprecated)]
+        let mut h = std::hash::SipHasher::new_with_keys(salt, !salt);
+        routes.hash(&mut h);
+        for list in legs {
+            list.len().hash(&mut h);
+            for leg in list.iter() {
+                leg.wait.to_bits().hash(&mut h);
+                let Some(pieces) = &leg.pieces else {
+                    0u8.hash(&mut h);
+                    continue;
+                };
+                for piece in pieces.iter() {
+                    match piece {
+                        Piece::Go { motion, scale } => {
+                            1u8.hash(&mut h);
+                            scale.to_bits().hash(&mut h);
+                            for p in &motion.primitives {
+                                p.theta.to_bits().hash(&mut h);
+                                p.turn.to_bits().hash(&mut h);
+                                for v in &p.path {
+                                    (v.x.to_bits(), v.y.to_bits()).hash(&mut h);
+                                }
+                            }
+                        }
+                        Piece::Hold { duration, reason } => {
+                            2u8.hash(&mut h);
+                            duration.to_bits().hash(&mut h);
+                            (*reason == HoldReason::Park).hash(&mut h);
+                        }
+                    }
+                }
+            }
+        }
+        h.finish()
+    };
+    (digest(0x5eed) as u128) << 64 | digest(0xfeed) as u128
+}

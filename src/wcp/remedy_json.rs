@@ -1,0 +1,319 @@
+//! The remedies of the feedback loop in the result's terms: their names, what each changed
+//! (the JSON of a round) and a sentence for the summary.
+
+use super::feedback::Remedy;
+use super::legs::{HoldReason, Legs, Piece};
+use super::schedule::{route_nodes, Activity};
+use crate::cell::Cell;
+use serde::Serialize;
+
+/// What a round's remedy changed, serialised under the remedy's name.
+#[derive(Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ChangeJson {
+    /// A wait at a node.
+    Delay(DelayJson),
+    /// A stop on the way.
+    Pause(PauseJson),
+    /// A move slowed down.
+    Slow(SlowJson),
+    /// A move by another way.
+    Detour(DetourJson),
+    /// A way by a parking pose.
+    StepAside(StepAsideJson),
+}
+
+/// A wait at a node.
+#[derive(Serialize)]
+pub struct DelayJson {
+    /// The robot that waits.
+    pub robot: String,
+    /// The move it waits before, e.g. `move weld-1 -> weld-2`.
+    pub before: String,
+    /// How long.
+    pub duration: f64,
+}
+
+/// A stop at a point of a move's path.
+#[derive(Serialize)]
+pub struct PauseJson {
+    /// The robot.
+    pub robot: String,
+    /// The move, e.g. `move home -> weld-2`.
+    pub on: String,
+    /// Where G stops.
+    pub at: [f64; 2],
+    /// How long it waits there.
+    pub duration: f64,
+}
+
+/// A move made slower.
+#[derive(Serialize)]
+pub struct SlowJson {
+    /// The robot.
+    pub robot: String,
+    /// The move.
+    pub on: String,
+    /// How many times slower than planned.
+    pub factor: f64,
+}
+
+/// A move made by another way.
+#[derive(Serialize)]
+pub struct DetourJson {
+    /// The robot.
+    pub robot: String,
+    /// The move.
+    pub on: String,
+    /// The robot it goes around.
+    pub around: String,
+    /// The new path of G.
+    pub path: Vec<[f64; 2]>,
+}
+
+/// A way by a parking pose.
+#[derive(Serialize)]
+pub struct StepAsideJson {
+    /// The robot.
+    pub robot: String,
+    /// The move that goes by the parking pose.
+    pub on: String,
+    /// The parking pose `[x, y, theta]`.
+    pub park: [f64; 3],
+    /// How long it waits there.
+    pub duration: f64,
+}
+
+/// The remedy's name in the JSON and on the command line.
+pub fn remedy_name(r: &Remedy) -> &'static str {
+    match r {
+        Remedy::Resequence => "resequence",
+        Remedy::Delay(_) => "delay",
+        Remedy::Pause { .. } => "pause",
+        Remedy::Slow { .. } => "slow",
+        Remedy::Detour { .. } => "detour",
+        Remedy::StepAside { .. } => "step-aside",
+    }
+}
+
+fn move_name(cell: &Cell, robot: usize, (from, to): (usize, usize)) -> String {
+    Activity::Move { from, to }.describe(cell, robot)
+}
+
+/// What the remedy changed, or `None` for a re-sequencing (the new sequences say it).
+pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
+    let name = |robot: usize| cell.robots[robot].name.clone();
+    Some(match r {
+        Remedy::Resequence => return None,
+        Remedy::Delay(d) => ChangeJson::Delay(DelayJson {
+            robot: name(d.robot),
+            before: move_name(cell, d.robot, d.nodes),
+            duration: d.duration,
+        }),
+        Remedy::Pause {
+            robot,
+            nodes,
+            at,
+            duration,
+            ..
+        } => ChangeJson::Pause(PauseJson {
+            robot: name(*robot),
+            on: move_name(cell, *robot, *nodes),
+            at: [at.x, at.y],
+            duration: *duration,
+        }),
+        Remedy::Slow {
+            robot,
+            nodes,
+            factor,
+            ..
+        } => ChangeJson::Slow(SlowJson {
+            robot: name(*robot),
+            on: move_name(cell, *robot, *nodes),
+            factor: *factor,
+        }),
+        Remedy::Detour {
+            robot,
+            nodes,
+            around,
+            path,
+            ..
+        } => ChangeJson::Detour(DetourJson {
+            robot: name(*robot),
+            on: move_name(cell, *robot, *nodes),
+            around: name(*around),
+            path: path.iter().map(|p| [p.x, p.y]).collect(),
+        }),
+        Remedy::StepAside {
+            robot,
+            nodes,
+            park,
+            duration,
+            ..
+        } => ChangeJson::StepAside(StepAsideJson {
+            robot: name(*robot),
+            on: move_name(cell, *robot, *nodes),
+            park: [park.pos.x, park.pos.y, park.theta],
+            duration: *duration,
+        }),
+    })
+}
+
+/// The remedy in a sentence, e.g. `R2 waits 1.000 before its move home -> weld-4`.
+pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
+    let name = |robot: usize| cell.robots[robot].name.as_str();
+    match r {
+        Remedy::Resequence => "re-sequenced".to_owned(),
+        Remedy::Delay(d) => format!(
+            "{} waits {:.3} before its {}",
+            name(d.robot),
+            d.duration,
+            move_name(cell, d.robot, d.nodes)
+        ),
+        Remedy::Pause {
+            robot,
+            nodes,
+            at,
+            duration,
+            ..
+        } => format!(
+            "{} pauses {duration:.3} at ({:.3}, {:.3}) on its {}",
+            name(*robot),
+            at.x,
+            at.y,
+            move_name(cell, *robot, *nodes)
+        ),
+        Remedy::Slow {
+            robot,
+            nodes,
+            factor,
+            ..
+        } => format!(
+            "{} makes its {} {factor:.3} times slower",
+            name(*robot),
+            move_name(cell, *robot, *nodes)
+        ),
+        Remedy::Detour {
+            robot,
+            nodes,
+            around,
+            path,
+            ..
+        } => format!(
+            "{} goes round {} on its {} ({} waypoints)",
+            name(*robot),
+            name(*around),
+            move_name(cell, *robot, *nodes),
+            path.len()
+        ),
+        Remedy::StepAside {
+            robot,
+            nodes,
+            park,
+            duration,
+            ..
+        } => format!(
+            "{} steps aside to ({:.3}, {:.3}) for {duration:.3} on its {}",
+            name(*robot),
+            park.pos.x,
+            park.pos.y,
+            move_name(cell, *robot, *nodes)
+        ),
+    }
+}
+
+/// A leg the loop changed, as `evaluate` reads it back (see `cell::parse_legs`).
+#[derive(Serialize)]
+pub struct LegJson {
+    /// The robot.
+    pub robot: String,
+    /// The move of its route (0 out of home, k after its k-th task).
+    #[serde(rename = "move")]
+    pub leg: usize,
+    /// That move in words, e.g. `move home -> weld-4`.
+    pub on: String,
+    /// What the robot does instead of the planned move.
+    pub pieces: Vec<PieceJson>,
+}
+
+/// One piece of a changed leg.
+#[derive(Serialize)]
+#[serde(untagged)]
+pub enum PieceJson {
+    /// A motion.
+    Go {
+        /// Its primitives and time stretch.
+        go: GoJson,
+    },
+    /// Standing still.
+    Hold {
+        /// How long.
+        hold: f64,
+        /// `pause` or `park`.
+        reason: &'static str,
+    },
+}
+
+/// A motion of a changed leg.
+#[derive(Serialize)]
+pub struct GoJson {
+    /// Rest-to-rest primitives, one after the other.
+    pub primitives: Vec<PrimitiveJson>,
+    /// Time stretch (1 as timed).
+    pub scale: f64,
+}
+
+/// One primitive: G along `path`, the angle from `theta` turning by `turn`.
+#[derive(Serialize)]
+pub struct PrimitiveJson {
+    /// Waypoints of G.
+    pub path: Vec<[f64; 2]>,
+    /// Angle at the start.
+    pub theta: f64,
+    /// Signed rotation.
+    pub turn: f64,
+}
+
+/// The changed legs of a schedule, robot by robot, leg by leg.
+pub fn legs_json(cell: &Cell, routes: &[Vec<usize>], legs: &Legs) -> Vec<LegJson> {
+    let mut out = Vec::new();
+    for (r, list) in legs.iter().enumerate() {
+        let nodes = route_nodes(&routes[r]);
+        for (m, leg) in list.iter().enumerate() {
+            let Some(pieces) = &leg.pieces else { continue };
+            let pieces = pieces
+                .iter()
+                .map(|p| match p {
+                    Piece::Go { motion, scale } => PieceJson::Go {
+                        go: GoJson {
+                            primitives: motion
+                                .primitives
+                                .iter()
+                                .map(|q| PrimitiveJson {
+                                    path: q.path.iter().map(|v| [v.x, v.y]).collect(),
+                                    theta: q.theta,
+                                    turn: q.turn,
+                                })
+                                .collect(),
+                            scale: *scale,
+                        },
+                    },
+                    Piece::Hold { duration, reason } => PieceJson::Hold {
+                        hold: *duration,
+                        reason: match reason {
+                            HoldReason::Pause => "pause",
+                            HoldReason::Park => "park",
+                        },
+                    },
+                })
+                .collect();
+            out.push(LegJson {
+                robot: cell.robots[r].name.clone(),
+                leg: m,
+                on: move_name(cell, r, (nodes[m], nodes[m + 1])),
+                pieces,
+            });
+        }
+    }
+    out
+}
