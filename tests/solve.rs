@@ -20,7 +20,7 @@ fn solve(cell: &Cell, seed: u64) -> Solved {
 }
 
 fn solve_with(cell: &Cell, opts: &SolveOptions) -> Solved {
-    let prepared = wcp::prepare(cell, &opts, &()).expect("a usable cell");
+    let prepared = wcp::prepare(cell, opts, &()).expect("a usable cell");
     wcp::solve(cell, &prepared, opts, &()).expect("a usable cell")
 }
 

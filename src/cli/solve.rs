@@ -174,14 +174,13 @@ pub fn run_solve(
             None => "collision-free schedule".to_owned(),
             Some(why) => format!("NO collision-free schedule: {why}"),
         };
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
         text += &format!(
-            " ({} round{}; collision-blind makespan {:.3}{})\n",
+            " ({} round{}, {} schedule{} checked; collision-blind makespan {:.3}{})\n",
             solved.iterations.len(),
-            if solved.iterations.len() == 1 {
-                ""
-            } else {
-                "s"
-            },
+            plural(solved.iterations.len()),
+            solved.nodes,
+            plural(solved.nodes),
             solved.blind_makespan,
             if solved.blind_optimal {
                 ", proven optimal"

@@ -283,7 +283,7 @@ pub fn summary(
     let _ = writeln!(out, "makespan {:.3}", schedule.makespan);
     for (r, s) in schedule.robots.iter().enumerate() {
         let _ = write!(out, "  {} ", cell.robots[r].name);
-        if s.route.is_empty() {
+        if s.route.is_empty() && s.segments.len() == 1 {
             let _ = writeln!(out, "stays home");
             continue;
         }

@@ -61,23 +61,22 @@ impl Activity {
     /// Human description, e.g. `move weld-1 -> weld-4`.
     pub fn describe(self, cell: &Cell, r: usize) -> String {
         match self {
+            // A robot without tasks may leave home out of another's way and come back.
+            Activity::Move { from: 0, to: 0 } => "excursion from home".to_owned(),
             Activity::Move { from, to } => {
                 format!("move {} -> {}", place(cell, r, from), place(cell, r, to))
             }
             Activity::Work(t) => format!("task {}", cell.tasks[t].name),
             Activity::Wait(node) => format!("wait at {}", place(cell, r, node)),
             Activity::Pause { from, to } => {
+                format!("pause on {}", Activity::Move { from, to }.describe(cell, r))
+            }
+            Activity::Park { from, to } => {
                 format!(
-                    "pause on move {} -> {}",
-                    place(cell, r, from),
-                    place(cell, r, to)
+                    "parked aside on {}",
+                    Activity::Move { from, to }.describe(cell, r)
                 )
             }
-            Activity::Park { from, to } => format!(
-                "parked aside on move {} -> {}",
-                place(cell, r, from),
-                place(cell, r, to)
-            ),
             Activity::Done => "back home".to_owned(),
         }
     }

@@ -296,11 +296,18 @@ struct Side {
 }
 
 impl Side {
-    /// The end of the window a change of `x`'s leg must clear, given the changed schedule:
-    /// the end of the leg (and its task), and no earlier than the end of what `y` was doing
-    /// at the contact (for a robot home for good, the contact itself): a change that only
-    /// ends the leg sooner, still in `y`'s way, clears nothing.
-    fn window_end(&self, leg_end: f64) -> f64 {
+    /// The end of the window over which a change of leg `m` of `x` must clear `y`, given
+    /// the changed schedule `s`: the end of the leg (its task included). When nothing comes
+    /// after that leg (the robot is then home for good), no earlier than the end of what `y`
+    /// was doing at the contact (for a robot itself home for good, the contact's time): a
+    /// change that only brings the robot home sooner, still in `y`'s way, clears nothing.
+    /// Later legs are the next rounds' business.
+    fn window_end(&self, s: &RobotSchedule, m: usize) -> f64 {
+        let leg_end = leg_window(s, m).1;
+        let last = !s.segments.iter().any(|g| g.leg.is_some_and(|l| l > m));
+        if !last {
+            return leg_end;
+        }
         let theirs = if self.sy.end.is_finite() {
             self.sy.end
         } else {
@@ -356,7 +363,7 @@ fn least_clearing(
         let (value, (new, schedule)) = least(0.0, hi, |v| {
             let new = make(v)?;
             let s = ctx.rebuild(view, side.x, m, &new)?;
-            let t1 = side.window_end(leg_window(&s, m).1);
+            let t1 = side.window_end(&s, m);
             let ok = clears(
                 ctx.cell,
                 (side.x, &s),
@@ -669,14 +676,15 @@ fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         ..old
     };
     let s = ctx.rebuild(view, side.x, m, &new)?;
-    let window = (t0, side.window_end(leg_window(&s, m).1));
-    if !clears(
+    let window = (t0, side.window_end(&s, m));
+    let ok = clears(
         ctx.cell,
         (side.x, &s),
         (side.y, &view.robots[side.y]),
         window,
         &ctx.opts.check,
-    ) {
+    );
+    if !ok {
         return None;
     }
     let remedy = Remedy::Detour {

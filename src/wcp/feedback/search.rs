@@ -120,7 +120,7 @@ impl Ord for Ordered {
 type Key = (usize, usize, Reverse<usize>, Ordered, usize);
 
 /// A re-sequencing runs this fraction (its inverse) of the sequencer's local search.
-const RESEQUENCE_SHARE: usize = 4;
+const RESEQUENCE_SHARE: usize = 2;
 
 /// Two makespans closer than this (relative) are the same: a node must beat the bound by
 /// more to be worth checking.
@@ -344,7 +344,14 @@ impl Search<'_> {
         )
         .map_err(|e| sequencer_error(self.cell, e))?;
         self.times.sequencing += clock.elapsed();
-        let legs = default_legs(self.cell.robots.len());
+        // Robots whose routes stay keep their legs: their remedies still answer their
+        // collisions.
+        let mut legs = default_legs(self.cell.robots.len());
+        for (r, route) in solution.sequences.iter().enumerate() {
+            if *route == self.nodes[id].routes[r] {
+                legs[r] = self.nodes[id].legs[r].clone();
+            }
+        }
         if solution.violations > 0 || !self.seen.insert(fingerprint(&solution.sequences, &legs)) {
             return Ok(());
         }
