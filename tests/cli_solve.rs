@@ -268,3 +268,92 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
         std::fs::write(&document, &out.stdout).unwrap();
     }
 }
+
+#[test]
+fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
+    let dir = temp("legs", "cells");
+    let out = workcell(&[
+        "generate",
+        "--kind",
+        "junction",
+        "--seed",
+        "1",
+        "--count",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let cell = dir.join("junction-1-0-cell.json");
+    let cell = cell.to_str().unwrap();
+    let solved = workcell(&["solve", cell, "--json", "--search-nodes", "300"]);
+    assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
+    let result = json(&solved);
+    let legs = result["legs"]
+        .as_array()
+        .expect("the junction needs changed moves");
+    assert!(!legs.is_empty());
+    let kinds: Vec<&str> = result["feedback"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|r| r["remedy"].as_str())
+        .collect();
+    for round in result["feedback"].as_array().unwrap() {
+        if let Some(name) = round["remedy"].as_str().filter(|n| *n != "resequence") {
+            let key = name.replace('-', "_");
+            assert!(round[&key].is_object(), "round {round} names its change");
+        }
+    }
+    assert!(!kinds.is_empty());
+    let mut document = temp("legs", "result.json");
+    std::fs::write(&document, &solved.stdout).unwrap();
+    for round in 0..2 {
+        let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "round {round}: {}",
+            text(&out.stdout)
+        );
+        assert_eq!(json(&out)["makespan"], result["makespan"]);
+        assert_eq!(json(&out)["legs"], result["legs"]);
+        document = temp("legs", &format!("evaluated-{round}.json"));
+        std::fs::write(&document, &out.stdout).unwrap();
+    }
+    // A motion run faster than planned would break the limits: refused, naming the field.
+    let tampered = |change: &dyn Fn(&mut Value)| {
+        let mut doc = result.clone();
+        change(&mut doc);
+        let file = temp("legs", "tampered.json");
+        std::fs::write(&file, doc.to_string()).unwrap();
+        workcell(&["evaluate", cell, file.to_str().unwrap()])
+    };
+    let go = |doc: &mut Value| -> (usize, usize) {
+        let legs = doc["legs"].as_array().unwrap();
+        for (k, leg) in legs.iter().enumerate() {
+            for (j, p) in leg["pieces"].as_array().unwrap().iter().enumerate() {
+                if p.get("go").is_some() {
+                    return (k, j);
+                }
+            }
+        }
+        unreachable!("a changed leg moves")
+    };
+    let out = tampered(&|doc| {
+        let (k, j) = go(doc);
+        doc["legs"][k]["pieces"][j]["go"]["scale"] = 0.5.into();
+    });
+    assert_eq!(out.status.code(), Some(2));
+    let e = text(&out.stderr);
+    assert!(e.contains(".go.scale") && e.contains("at least 1"), "{e}");
+    // A motion that starts away from where the robot is: a jump, refused.
+    let out = tampered(&|doc| {
+        let (k, j) = go(doc);
+        let first = &mut doc["legs"][k]["pieces"][j]["go"]["primitives"][0]["path"][0][0];
+        *first = (first.as_f64().unwrap() + 0.5).into();
+    });
+    assert_eq!(out.status.code(), Some(2));
+    let e = text(&out.stderr);
+    assert!(e.contains("legs[") && e.contains("not continuous"), "{e}");
+}

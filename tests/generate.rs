@@ -276,3 +276,51 @@ fn cli_errors_exit_2_and_name_the_path() {
     );
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn cli_writes_conflict_cells_of_every_family() {
+    let dir = temp_dir("cli-conflict");
+    let args = |d: &std::path::Path| {
+        workcell(&[
+            "generate",
+            "--kind",
+            "conflict",
+            "--seed",
+            "3",
+            "--count",
+            "2",
+            "--out",
+            d.to_str().unwrap(),
+        ])
+    };
+    let out = args(&dir);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(stdout.lines().count(), 12);
+    let again = temp_dir("cli-conflict-again");
+    assert_eq!(args(&again).status.code(), Some(0));
+    for family in workcell::generate::ConflictKind::ALL {
+        for k in 0..2 {
+            let name = format!("{}-3-{k}-cell.json", family.name());
+            let text = std::fs::read_to_string(dir.join(&name)).unwrap();
+            assert_eq!(text, std::fs::read_to_string(again.join(&name)).unwrap());
+            let loaded = workcell::cell::parse_cell(&text, std::path::Path::new(&name));
+            assert!(loaded.is_ok(), "{name}: {:?}", loaded.err());
+        }
+    }
+    // A cell file is not a scene: `compare` skips `*-cell.json` in folders.
+    let one = temp_dir("cli-conflict-one");
+    let out = workcell(&[
+        "generate",
+        "--kind",
+        "doorway",
+        "--seed",
+        "3",
+        "--count",
+        "1",
+        "--out",
+        one.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(one.join("doorway-3-0-cell.json").exists());
+}
