@@ -5,7 +5,7 @@
 //! * `check`: 0 collision-free, 1 collision found.
 //! * `solve`: 0 a collision-free schedule found, 1 none found within the limits.
 //! * `evaluate`: 0 the schedule is collision-free, 1 it collides.
-//! * `generate`: 0 all scenes written.
+//! * `generate`: 0 all scenes or cells written.
 //! * `compare`: 0 compared.
 
 mod cli;
@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use workcell::collision::{CheckOptions, Method};
 use workcell::compare::{default_contenders, Contender};
-use workcell::generate::Kind;
+use workcell::generate::{CellRequest, Kind};
 
 #[derive(Parser)]
 #[command(
@@ -107,23 +107,32 @@ enum Command {
         methods: Option<Vec<Contender>>,
     },
     /// Write deterministic random scenes (same arguments, same bytes) as
-    /// `OUT/<kind>-<seed>-<k>.json` for k in 0..count.
+    /// `OUT/<kind>-<seed>-<k>.json` for k in 0..count, or cells for `solve` (`--kind cell`)
+    /// as `OUT/cell-<R>r-<N>t-<F>f-<seed>-<k>-cell.json`.
     ///
-    /// Exit status: 0 written, 2 the folder or a file cannot be written.
+    /// Exit status: 0 written, 2 an impossible request, or the folder or a file cannot be
+    /// written.
     Generate {
-        /// Family of scenes (see README: "`workcell generate`"), or `all` for every family.
+        /// Family of scenes (see README: "`workcell generate`"), `all` for every family of
+        /// scenes, or `cell` for a cell to solve.
         #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(
-            Kind::ALL.map(Kind::name).into_iter().chain(["all"])))]
+            Kind::ALL.map(Kind::name).into_iter().chain(["all", "cell"])))]
         kind: String,
         /// Seed: the same seed gives the same scenes.
         #[arg(long)]
         seed: u64,
-        /// Number of robots (`hall` only; default 10).
+        /// Number of robots (`hall`: default 10; `cell`: required, at most 1,000).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000))]
         robots: Option<u64>,
-        /// Number of scenes.
-        #[arg(long, default_value_t = 10)]
-        count: u64,
+        /// Number of tasks of a cell (`cell` only, required).
+        #[arg(long)]
+        tasks: Option<u64>,
+        /// Number of fixtures of a cell (`cell` only; default 3 per 50 tasks).
+        #[arg(long)]
+        fixtures: Option<u64>,
+        /// Number of scenes or cells (default 10 scenes, 1 cell).
+        #[arg(long)]
+        count: Option<u64>,
         /// Output folder, created if missing.
         #[arg(long)]
         out: PathBuf,
@@ -135,6 +144,47 @@ fn positive(s: &str) -> Result<f64, String> {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("expected a positive number, got `{s}`")),
     }
+}
+
+/// `workcell generate`: scenes of one kind or all, or cells.
+fn generate(
+    kind: &str,
+    seed: u64,
+    robots: Option<u64>,
+    tasks: Option<u64>,
+    fixtures: Option<u64>,
+    count: Option<u64>,
+    out: &std::path::Path,
+) -> Result<ExitCode, workcell::cell::InputError> {
+    use cli::generate::{run_generate, What};
+    let refuse = |reason: &str| workcell::cell::InputError {
+        file: out.to_path_buf(),
+        body: None,
+        field: String::new(),
+        reason: reason.to_owned(),
+    };
+    if kind == "cell" {
+        let (Some(robots), Some(tasks)) = (robots, tasks) else {
+            return Err(refuse("--kind cell needs --robots and --tasks"));
+        };
+        let tasks = tasks as usize;
+        let req = CellRequest {
+            robots: robots as usize,
+            tasks,
+            fixtures: fixtures.map_or(CellRequest::default_fixtures(tasks), |f| f as usize),
+        };
+        req.check().map_err(|e| refuse(&e))?;
+        return run_generate(&What::Cells(req), seed, count.unwrap_or(1), out);
+    }
+    if tasks.is_some() || fixtures.is_some() {
+        return Err(refuse("--tasks and --fixtures apply only to --kind cell"));
+    }
+    let kinds = Kind::from_name(kind);
+    let what = What::Scenes {
+        kinds: kinds.as_ref().map_or(&Kind::ALL[..], std::slice::from_ref),
+        robots: robots.map(|r| r as usize),
+    };
+    run_generate(&what, seed, count.unwrap_or(10), out)
 }
 
 fn main() -> ExitCode {
@@ -179,17 +229,11 @@ fn main() -> ExitCode {
             kind,
             seed,
             robots,
+            tasks,
+            fixtures,
             count,
             out,
-        } => cli::generate::run_generate(
-            Kind::from_name(&kind)
-                .as_ref()
-                .map_or(&Kind::ALL[..], std::slice::from_ref),
-            seed,
-            robots.map(|r| r as usize),
-            count,
-            &out,
-        ),
+        } => generate(&kind, seed, robots, tasks, fixtures, count, &out),
         Command::Compare {
             inputs,
             svg,

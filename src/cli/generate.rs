@@ -1,49 +1,90 @@
-//! `workcell generate`: write deterministic random scenes of one kind.
+//! `workcell generate`: write deterministic random scenes of one kind, or cells.
 
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 use workcell::cell::{scene_document, InputError};
-use workcell::generate::{generate_scene, scene_file_name, Kind};
+use workcell::generate::{
+    cell_file_name, generate_cell, generate_scene, scene_file_name, CellRequest, Kind,
+};
 
-/// Writes `DIR/<kind>-<seed>-<k>.json` for each kind and k in 0..count, creating `out` if
-/// missing, and prints one line per file. Same arguments, same bytes.
-pub fn run_generate(
-    kinds: &[Kind],
-    seed: u64,
-    robots: Option<usize>,
-    count: u64,
-    out: &Path,
-) -> Result<ExitCode, InputError> {
-    let fail = |file: &Path, reason: String| InputError {
+/// What `generate` writes.
+pub enum What<'a> {
+    /// Scenes of these kinds; `robots` for the halls.
+    Scenes {
+        /// The kinds.
+        kinds: &'a [Kind],
+        /// Robots of a hall.
+        robots: Option<usize>,
+    },
+    /// Cells for `solve`.
+    Cells(CellRequest),
+}
+
+fn fail(file: &Path, reason: String) -> InputError {
+    InputError {
         file: file.to_path_buf(),
         body: None,
         field: String::new(),
         reason,
-    };
-    if let (Some(_), [kind]) = (robots, kinds) {
-        if *kind != Kind::Hall {
-            return Err(fail(
-                out,
-                format!(
-                    "--robots applies only to --kind hall, not to {}",
-                    kind.name()
-                ),
-            ));
+    }
+}
+
+/// Writes `DIR/<kind>-<seed>-<k>.json` for each kind and k in 0..count (or the cells of
+/// [`cell_file_name`]), creating `out` if missing, and prints one line per file. Same
+/// arguments, same bytes.
+pub fn run_generate(
+    what: &What,
+    seed: u64,
+    count: u64,
+    out: &Path,
+) -> Result<ExitCode, InputError> {
+    let mut files: Vec<(String, Box<dyn Fn() -> Result<String, String> + '_>)> = Vec::new();
+    match what {
+        What::Scenes { kinds, robots } => {
+            if let (Some(_), [kind]) = (robots, kinds) {
+                if *kind != Kind::Hall {
+                    return Err(fail(
+                        out,
+                        format!(
+                            "--robots applies only to --kind hall and cell, not to {}",
+                            kind.name()
+                        ),
+                    ));
+                }
+            }
+            for &kind in kinds.iter() {
+                for k in 0..count {
+                    let robots = robots.unwrap_or(10);
+                    files.push((
+                        scene_file_name(kind, seed, k),
+                        Box::new(move || {
+                            let scene = generate_scene(kind, seed, k, robots);
+                            Ok(serde_json::to_string_pretty(&scene_document(&scene))
+                                .expect("a scene serialises"))
+                        }),
+                    ));
+                }
+            }
+        }
+        What::Cells(req) => {
+            for k in 0..count {
+                files.push((
+                    cell_file_name(req, seed, k),
+                    Box::new(move || {
+                        generate_cell(req, seed, k)
+                            .map(|doc| serde_json::to_string_pretty(&doc).expect("serialises"))
+                    }),
+                ));
+            }
         }
     }
     std::fs::create_dir_all(out)
         .map_err(|e| fail(out, format!("cannot create the output folder: {e}")))?;
     let mut stdout = std::io::stdout().lock();
-    for (&kind, k) in kinds
-        .iter()
-        .flat_map(|kind| (0..count).map(move |k| (kind, k)))
-    {
-        let scene = generate_scene(kind, seed, k, robots.unwrap_or(10));
-        let text = serde_json::to_string_pretty(&scene_document(&scene))
-            .expect("a scene serialises")
-            + "\n";
-        let file = out.join(scene_file_name(kind, seed, k));
+    for (name, make) in files {
+        let file = out.join(name);
+        let text = make().map_err(|reason| fail(&file, reason))? + "\n";
         std::fs::write(&file, text)
             .map_err(|e| fail(&file, format!("cannot write the file: {e}")))?;
         // A closed pipe (`| head`) is the reader's choice, not an error of ours.
