@@ -71,9 +71,23 @@ enum Command {
         /// Rounds of sequencing, checking and feedback before giving up.
         #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u64).range(1..))]
         max_iterations: u64,
-        /// Write the work-cell graph (nodes and each robot's travel times) to this file.
+        /// Write the work-cell graph (nodes and each robot's travel times) to this file, once
+        /// solved: each arc says whether its time is exact (planned and certified) or a
+        /// lower bound.
         #[arg(long)]
         export_graph: Option<PathBuf>,
+        /// Stop searching after this many seconds (whole solve) and keep the best certified
+        /// schedule found so far. Without it the result depends only on the cell and the seed.
+        #[arg(long, value_parser = positive)]
+        time_limit: Option<f64>,
+        /// Print a plain progress line on stderr every second (stage, best makespan, elapsed
+        /// time) instead of the progress bar.
+        #[arg(long)]
+        progress: bool,
+        /// Plan and certify every move of every robot before sequencing, instead of only those
+        /// the sequencer's plans use (slower; the exported graph is then all exact).
+        #[arg(long)]
+        plan_all: bool,
     },
     /// Time and check given sequences (the `sequences` object of a solve result).
     ///
@@ -213,12 +227,21 @@ fn main() -> ExitCode {
             seed,
             max_iterations,
             export_graph,
+            time_limit,
+            progress,
+            plan_all,
         } => cli::solve::run_solve(
             &cell,
             &out,
-            seed,
-            max_iterations as usize,
-            export_graph.as_deref(),
+            &cli::solve::SolveArgs {
+                seed,
+                max_iterations: max_iterations as usize,
+                export_graph: export_graph.as_deref(),
+                // Beyond what a Duration holds, no limit at all.
+                time_limit: time_limit.and_then(|t| std::time::Duration::try_from_secs_f64(t).ok()),
+                progress,
+                plan_all,
+            },
         ),
         Command::Evaluate {
             cell,

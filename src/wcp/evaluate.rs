@@ -1,7 +1,8 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
 use super::feedback::{SolveOptions, StageTimes};
-use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
+use super::moves::MoveStore;
+use super::schedule::{BuildError, Collision, Delay, Schedule};
 use crate::cell::{Cell, InputError, Sequences};
 use crate::collision::{check, CheckReport};
 use std::path::Path;
@@ -36,7 +37,7 @@ pub fn evaluate(
 ) -> Result<Evaluated, InputError> {
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    let mut cache = MoveCache::new(cell, opts.planner);
+    let cache = MoveStore::new(cell, &opts.planner);
     let routes = &sequences.routes;
     let delays: Vec<Delay> = sequences
         .waits
@@ -54,7 +55,7 @@ pub fn evaluate(
             }
         })
         .collect();
-    let schedule = Schedule::build(cell, routes, &delays, &mut cache).map_err(|e| {
+    let schedule = Schedule::build(cell, routes, &delays, &cache).map_err(|e| {
         let r = e.robot();
         let robot = &cell.robots[r].name;
         let field = match e {

@@ -1,13 +1,15 @@
 //! The loop of the Work-Cell Problem: sequence, schedule, check, feed the first collision
 //! back, until the schedule is collision-free.
 
-use super::graph::{check_reachable, WcpGraph};
-use super::moves::MoveTable;
-use super::schedule::{Activity, BuildError, Collision, Delay, MoveCache, Schedule, Segment};
-use super::sequencer::{self, Conflict, Instance, SequencerError, SequencerOptions};
+use super::graph::check_reachable;
+use super::moves::{bounds, robot_nodes, MoveStore};
+use super::schedule::{Activity, BuildError, Collision, Delay, Schedule, Segment};
+use super::sequence::sequence_with;
+use super::sequencer::{Bounds, Conflict, ExactArcs, SequencerError, SequencerOptions};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckOptions, CheckReport};
 use crate::planning::PlannerOptions;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Settings of a solve.
@@ -21,6 +23,14 @@ pub struct SolveOptions {
     pub planner: PlannerOptions,
     /// The checker's settings for the schedules.
     pub check: CheckOptions,
+    /// Wall time for the whole solve, from [`prepare`] on: the sequencer then returns the
+    /// best certified plan found so far. `None`: no limit, and the result depends only on
+    /// the input and the seed.
+    pub time_limit: Option<Duration>,
+    /// Plan and certify every move of every robot before sequencing (robots × nodes² moves),
+    /// instead of only the moves between homes and tasks and those the plans under
+    /// consideration use. For comparisons and exports of the whole graph.
+    pub plan_all: bool,
 }
 
 impl Default for SolveOptions {
@@ -30,6 +40,8 @@ impl Default for SolveOptions {
             sequencer: SequencerOptions::default(),
             planner: PlannerOptions::default(),
             check: CheckOptions::default(),
+            time_limit: None,
+            plan_all: false,
         }
     }
 }
@@ -43,6 +55,11 @@ pub trait Progress: Sync {
     fn move_planned(&self) {}
     /// Round `k` (from 1) checked a schedule of this makespan.
     fn iteration(&self, _k: usize, _makespan: f64, _collision: Option<&Collision>) {}
+    /// The sequencer starts its round `round` (from 1) on the travel times known so far.
+    fn sequencing(&self, _round: usize) {}
+    /// The sequencer found a plan of this makespan (on the travel times it knows; from any
+    /// thread).
+    fn best(&self, _makespan: f64) {}
 }
 
 impl Progress for () {}
@@ -50,11 +67,12 @@ impl Progress for () {}
 /// Wall time spent in each stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
-    /// Planning and certifying every move.
+    /// Planning and certifying the moves between homes and tasks (every move with
+    /// [`SolveOptions::plan_all`]).
     pub planning: Duration,
-    /// Building the graph and the sequencer's instance.
+    /// Building the lower bounds.
     pub graph: Duration,
-    /// Sequencer runs.
+    /// Sequencer runs, with the moves they plan.
     pub sequencing: Duration,
     /// Timing the schedules (including moves planned on demand).
     pub scheduling: Duration,
@@ -82,14 +100,17 @@ pub struct Iteration {
     pub remedy: Option<Remedy>,
 }
 
-/// The cell's moves and graph, ready for sequencing.
+/// The cell's moves and bounds, ready for sequencing.
 pub struct Prepared {
-    /// Every robot's certified moves.
-    pub moves: MoveTable,
-    /// The work-cell graph.
-    pub graph: WcpGraph,
-    /// The sequencer's instance, read from the graph.
-    pub instance: Instance,
+    /// The one store of planned and certified moves.
+    pub moves: MoveStore,
+    /// The lower bound of every move.
+    pub bounds: Arc<Bounds>,
+    /// The moves every sequencing starts from: those between homes and allowed tasks (all
+    /// of them with [`SolveOptions::plan_all`]), per robot, both ways.
+    pub known: Arc<ExactArcs>,
+    /// When [`SolveOptions::time_limit`] runs out.
+    pub deadline: Option<Instant>,
     /// Time spent so far.
     pub times: StageTimes,
 }
@@ -121,38 +142,47 @@ pub struct Solved {
     pub times: StageTimes,
 }
 
-/// Plans and certifies every move, builds the graph and the sequencer's instance. A task
-/// that no allowed robot can reach is an input error.
+/// Builds the lower bounds, plans and certifies every move between a home and a task its
+/// robot may do (every move with [`SolveOptions::plan_all`]). A task that no allowed robot
+/// can reach is an input error. The time limit counts from here.
 pub fn prepare(
     cell: &Cell,
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Prepared, InputError> {
+    let deadline = opts
+        .time_limit
+        .and_then(|limit| Instant::now().checked_add(limit));
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    progress.planning(move_count(cell));
-    let moves = MoveTable::build(cell, &opts.planner, &|| progress.move_planned());
-    check_reachable(cell, &moves)?;
-    times.planning = clock.elapsed();
-    let clock = Instant::now();
-    let graph = WcpGraph::new(cell, &moves);
-    let instance = graph.instance(cell).map_err(|e| sequencer_error(cell, e))?;
+    let bounds = Arc::new(bounds(cell));
     times.graph = clock.elapsed();
+    let clock = Instant::now();
+    let moves = MoveStore::new(cell, &opts.planner);
+    let mut pairs: Vec<(usize, usize, usize)> = Vec::new();
+    for r in 0..cell.robots.len() {
+        let nodes = robot_nodes(cell, r);
+        for (i, &a) in nodes.iter().enumerate() {
+            let last = if opts.plan_all || a == 0 { nodes.len() } else { 0 };
+            pairs.extend(nodes[i + 1..last.max(i + 1)].iter().map(|&b| (r, a, b)));
+        }
+    }
+    progress.planning(pairs.len());
+    let durations = moves.plan_all(&pairs, &|| progress.move_planned());
+    check_reachable(cell, &moves)?;
+    let mut known: ExactArcs = vec![Default::default(); cell.robots.len()];
+    for (&(r, a, b), &d) in pairs.iter().zip(&durations) {
+        known[r].insert((a, b), d);
+        known[r].insert((b, a), d);
+    }
+    times.planning = clock.elapsed();
     Ok(Prepared {
         moves,
-        graph,
-        instance,
+        bounds,
+        known: Arc::new(known),
+        deadline,
         times,
     })
-}
-
-fn move_count(cell: &Cell) -> usize {
-    (0..cell.robots.len())
-        .map(|r| {
-            let n = 1 + cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
-            n * (n - 1) / 2
-        })
-        .sum()
 }
 
 /// A sequencer error in the cell's terms.
@@ -176,19 +206,17 @@ pub fn solve(
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
     let mut times = prepared.times;
-    let inst = &prepared.instance;
-    let mut cache = MoveCache::new(cell, opts.planner);
+    let cache = &prepared.moves;
     let mut conflicts: Vec<Conflict> = Vec::new();
     let clock = Instant::now();
-    let blind =
-        sequencer::solve(inst, &[], &opts.sequencer).map_err(|e| sequencer_error(cell, e))?;
+    let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
     times.sequencing += clock.elapsed();
     let mut routes = blind.sequences.clone();
     let mut delays: Vec<Delay> = Vec::new();
     let mut iterations = Vec::new();
     loop {
         let clock = Instant::now();
-        let schedule = build(cell, &routes, &delays, &mut cache)?;
+        let schedule = build(cell, &routes, &delays, cache)?;
         times.scheduling += clock.elapsed();
         let clock = Instant::now();
         let report = check(&schedule.scene(cell), &opts.check);
@@ -252,8 +280,7 @@ pub fn solve(
                 b: (b, seg_b.activity.step()),
             });
             let clock = Instant::now();
-            let resequenced = sequencer::solve(inst, &conflicts, &opts.sequencer)
-                .map_err(|e| sequencer_error(cell, e))?;
+            let resequenced = sequence_with(cell, prepared, &conflicts, opts, None, progress)?;
             times.sequencing += clock.elapsed();
             if resequenced.violations == 0 {
                 best = Some(Candidate {
@@ -275,10 +302,10 @@ pub fn solve(
                     continue;
                 };
                 let delay =
-                    shortest_delay(cell, &routes, &delays, &mut cache, full, y, seg_x.end, opts)?;
+                    shortest_delay(cell, &routes, &delays, cache, full, y, seg_x.end, opts)?;
                 let mut candidate = delays.clone();
                 candidate.push(delay);
-                let makespan = build(cell, &routes, &candidate, &mut cache)?.makespan;
+                let makespan = build(cell, &routes, &candidate, cache)?.makespan;
                 if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                     best = Some(Candidate {
                         makespan,
@@ -335,7 +362,7 @@ fn shortest_delay(
     cell: &Cell,
     routes: &[Vec<usize>],
     delays: &[Delay],
-    cache: &mut MoveCache,
+    cache: &MoveStore,
     full: Delay,
     other: usize,
     segment_end: f64,
@@ -407,7 +434,7 @@ fn build(
     cell: &Cell,
     routes: &[Vec<usize>],
     delays: &[Delay],
-    cache: &mut MoveCache,
+    cache: &MoveStore,
 ) -> Result<Schedule, InputError> {
     Schedule::build(cell, routes, delays, cache).map_err(|e| {
         let robot = &cell.robots[e.robot()].name;

@@ -1,15 +1,23 @@
-//! Every move a robot may make, planned and then certified obstacle-free by the checker.
+//! Every move a robot may make, planned and then certified obstacle-free by the checker, on
+//! demand: [`MoveStore`] plans and certifies each move once, whoever asks first, and keeps it
+//! for every later use (the sequencer, the schedules, the feedback loop's remedies).
+//! [`bounds`] gives each move's admissible lower bound without planning it.
 //!
 //! Node indices are those of the sequencer: for each robot, 0 is its home and `1 + t` is
 //! task `t`. A move and its reverse visit the same poses (the motion model is symmetric in
 //! time), so one plan and one certificate serve both directions.
 
+use super::sequencer::{BoundLimits, Bounds};
 use crate::cell::{Cell, CellRobot};
 use crate::collision::{check, Body, CheckOptions, Scene};
+use crate::geometry::ConvexPolygon;
 use crate::motion::{Motion, Pose, Sample, Trajectory};
 use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use rayon::prelude::*;
+use std::collections::HashMap;
 use std::fmt;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// Why a robot has no move between two nodes.
 #[derive(Clone, Debug, PartialEq)]
@@ -107,13 +115,25 @@ pub fn certified_move(
     planner: &PlannerOptions,
     obstacles: &[Body],
 ) -> Result<PlannedMove, MoveFailure> {
-    let robot = &cell.robots[r];
     let shapes: Vec<_> = cell.obstacles.iter().map(|o| o.shape.clone()).collect();
+    plan_and_certify(cell, r, from, to, planner, &shapes, obstacles)
+}
+
+fn plan_and_certify(
+    cell: &Cell,
+    r: usize,
+    from: usize,
+    to: usize,
+    planner: &PlannerOptions,
+    shapes: &[ConvexPolygon],
+    obstacles: &[Body],
+) -> Result<PlannedMove, MoveFailure> {
+    let robot = &cell.robots[r];
     let (a, b) = (node_pose(cell, r, from), node_pose(cell, r, to));
     let planned = plan_move(
         &robot.shape,
         &limits(robot),
-        &shapes,
+        shapes,
         cell.delta,
         a,
         b,
@@ -171,71 +191,165 @@ fn certify(
     }
 }
 
-/// Travel times of every robot between every pair of its nodes, each move certified.
-#[derive(Clone, Debug)]
-pub struct MoveTable {
-    tasks: usize,
-    /// Per robot, `(tasks + 1)²` row-major; infinite where no move exists.
-    travel: Vec<Vec<f64>>,
-    /// Per robot, the moves that failed: `(from, to, why)` with `from < to`.
-    pub failures: Vec<Vec<(usize, usize, MoveFailure)>>,
-    /// Moves planned and certified (one per unordered node pair).
-    pub certified: usize,
+/// The admissible lower bound of every move of the cell (see [`Bounds`]).
+pub fn bounds(cell: &Cell) -> Bounds {
+    let pose = |p: &Pose| (p.pos, p.theta);
+    Bounds::new(
+        cell.robots
+            .iter()
+            .map(|r| BoundLimits {
+                max_speed: r.max_speed,
+                max_accel: r.max_accel,
+                max_angular_accel: r.max_accel / r.shape.radius(),
+                max_turn_rate: r.max_turn_rate,
+            })
+            .collect(),
+        cell.robots.iter().map(|r| pose(&r.home)).collect(),
+        cell.tasks.iter().map(|t| pose(&t.at)).collect(),
+    )
 }
 
-impl MoveTable {
-    /// Plans and certifies every move of every robot, in parallel. `progress` is called once
-    /// per move planned, from any thread.
-    pub fn build(cell: &Cell, planner: &PlannerOptions, progress: &(dyn Fn() + Sync)) -> Self {
-        let obstacles = cell.obstacle_bodies();
-        let n = cell.tasks.len() + 1;
-        let jobs: Vec<(usize, usize, usize)> = (0..cell.robots.len())
-            .flat_map(|r| {
-                let nodes = robot_nodes(cell, r);
-                let mut pairs = Vec::with_capacity(nodes.len() * nodes.len() / 2);
-                for (i, &a) in nodes.iter().enumerate() {
-                    pairs.extend(nodes[i + 1..].iter().map(move |&b| (r, a, b)));
-                }
-                pairs
-            })
-            .collect();
-        let results: Vec<Result<f64, MoveFailure>> = jobs
-            .par_iter()
-            .map(|&(r, a, b)| {
-                let m = certified_move(cell, r, a, b, planner, &obstacles).map(|m| m.duration);
-                progress();
-                m
-            })
-            .collect();
-        let mut travel = vec![vec![f64::INFINITY; n * n]; cell.robots.len()];
-        let mut failures = vec![Vec::new(); cell.robots.len()];
-        let mut certified = 0;
-        for (r, row) in travel.iter_mut().enumerate() {
-            row[0] = 0.0;
-            for node in robot_nodes(cell, r) {
-                row[node * n + node] = 0.0;
-            }
-        }
-        for (&(r, a, b), result) in jobs.iter().zip(results) {
-            match result {
-                Ok(time) => {
-                    travel[r][a * n + b] = time;
-                    travel[r][b * n + a] = time;
-                    certified += 1;
-                }
-                Err(why) => failures[r].push((a, b, why)),
-            }
-        }
-        MoveTable {
-            tasks: cell.tasks.len(),
-            travel,
-            failures,
-            certified,
+/// Independent locks over the store, so that planning threads seldom wait for each other.
+const SHARDS: usize = 64;
+
+/// A move `(robot, a, b)` with `a <= b`, planned once; its reverse made on first use.
+#[derive(Default)]
+struct Slot {
+    forward: OnceLock<Result<Arc<PlannedMove>, MoveFailure>>,
+    backward: OnceLock<Arc<PlannedMove>>,
+}
+
+/// The one store of planned and certified moves of a cell. Thread-safe: any thread may ask
+/// for any move; each is planned and certified once (a thread asking for a move being
+/// planned waits for it), and a move and its reverse share one plan. The planner is
+/// deterministic, so what the store holds never depends on who asked first.
+pub struct MoveStore {
+    cell: Cell,
+    planner: PlannerOptions,
+    shapes: Vec<ConvexPolygon>,
+    obstacles: Vec<Body>,
+    shards: Vec<Mutex<HashMap<(usize, usize, usize), Arc<Slot>>>>,
+    planned: AtomicUsize,
+}
+
+impl fmt::Debug for MoveStore {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("MoveStore")
+            .field("planned", &self.planned())
+            .finish_non_exhaustive()
+    }
+}
+
+impl MoveStore {
+    /// An empty store for `cell` (kept as a copy) and these planner settings.
+    pub fn new(cell: &Cell, planner: &PlannerOptions) -> Self {
+        MoveStore {
+            cell: cell.clone(),
+            planner: *planner,
+            shapes: cell.obstacles.iter().map(|o| o.shape.clone()).collect(),
+            obstacles: cell.obstacle_bodies(),
+            shards: (0..SHARDS).map(|_| Mutex::new(HashMap::new())).collect(),
+            planned: AtomicUsize::new(0),
         }
     }
 
-    /// Travel time of robot `r` from node `from` to node `to`; infinite if it has no move.
-    pub fn travel(&self, r: usize, from: usize, to: usize) -> f64 {
-        self.travel[r][from * (self.tasks + 1) + to]
+    fn slot(&self, r: usize, a: usize, b: usize) -> Arc<Slot> {
+        let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
+        let mut map = self.shards[shard].lock().expect("no thread panics holding it");
+        map.entry((r, a, b)).or_default().clone()
+    }
+
+    /// Robot `r`'s certified move from node `from` to node `to`, planned on first use.
+    pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
+        let (a, b) = (from.min(to), from.max(to));
+        let slot = self.slot(r, a, b);
+        let planned = slot
+            .forward
+            .get_or_init(|| {
+                self.planned.fetch_add(1, Ordering::Relaxed);
+                plan_and_certify(
+                    &self.cell,
+                    r,
+                    a,
+                    b,
+                    &self.planner,
+                    &self.shapes,
+                    &self.obstacles,
+                )
+                .map(Arc::new)
+            })
+            .clone()?;
+        Ok(if from <= to {
+            planned
+        } else {
+            slot.backward
+                .get_or_init(|| Arc::new(reversed(&planned)))
+                .clone()
+        })
+    }
+
+    /// The duration of robot `r`'s move between two nodes (the same both ways), planned on
+    /// first use.
+    pub fn duration(&self, r: usize, from: usize, to: usize) -> Result<f64, MoveFailure> {
+        self.get(r, from.min(to), from.max(to)).map(|m| m.duration)
+    }
+
+    /// The move's outcome if it was planned already; `None` if not (nothing is planned).
+    pub fn known(&self, r: usize, from: usize, to: usize) -> Option<Result<f64, MoveFailure>> {
+        let (a, b) = (from.min(to), from.max(to));
+        let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
+        let map = self.shards[shard].lock().expect("no thread panics holding it");
+        let slot = map.get(&(r, a, b))?;
+        slot.forward
+            .get()
+            .map(|m| m.as_ref().map(|m| m.duration).map_err(Clone::clone))
+    }
+
+    /// Plans the moves `(robot, a, b)` not planned yet, in parallel; `progress` is called
+    /// once per move (from any thread). Returns each move's duration (infinite: no move) in
+    /// the order given.
+    pub fn plan_all(
+        &self,
+        moves: &[(usize, usize, usize)],
+        progress: &(dyn Fn() + Sync),
+    ) -> Vec<f64> {
+        moves
+            .par_iter()
+            .map(|&(r, a, b)| {
+                let d = self.duration(r, a, b).unwrap_or(f64::INFINITY);
+                progress();
+                d
+            })
+            .collect()
+    }
+
+    /// Moves planned so far (one per robot and unordered pair of nodes).
+    pub fn planned(&self) -> usize {
+        self.planned.load(Ordering::Relaxed)
+    }
+
+    /// The cell the store plans for.
+    pub fn cell(&self) -> &Cell {
+        &self.cell
+    }
+}
+
+/// The same move run backwards: the same poses, visited in reverse order.
+fn reversed(m: &PlannedMove) -> PlannedMove {
+    let samples = m
+        .samples
+        .iter()
+        .rev()
+        .map(|s| Sample {
+            t: m.duration - s.t,
+            vel: -s.vel,
+            omega: -s.omega,
+            ..*s
+        })
+        .collect();
+    PlannedMove {
+        duration: m.duration,
+        path: m.path.iter().rev().copied().collect(),
+        samples,
     }
 }

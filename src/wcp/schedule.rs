@@ -1,15 +1,12 @@
 //! The timed schedule: every robot's moves, waits and tasks, sampled into trajectories.
 
-use super::moves::{certified_move, node_name, node_pose, MoveFailure};
+use super::moves::{node_name, node_pose, MoveFailure, MoveStore};
 use super::sequencer::Step;
 use crate::cell::Cell;
 use crate::collision::{Body, CheckReport, Scene};
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::{Motion, Pose, Sample, Trajectory};
-use crate::planning::{PlannedMove, PlannerOptions};
-use std::collections::HashMap;
 use std::f64::consts::TAU;
-use std::sync::Arc;
 
 /// What a robot does during a segment of its schedule. Nodes are robot-local: 0 is home,
 /// `1 + t` is task `t`.
@@ -122,68 +119,6 @@ pub struct Schedule {
     pub makespan: f64,
 }
 
-/// Planned and certified moves, kept for reuse across iterations of the loop. A move and
-/// its reverse share one plan.
-pub struct MoveCache<'a> {
-    cell: &'a Cell,
-    planner: PlannerOptions,
-    obstacles: Vec<Body>,
-    moves: HashMap<(usize, usize, usize), Result<Arc<PlannedMove>, MoveFailure>>,
-}
-
-impl<'a> MoveCache<'a> {
-    /// An empty cache for `cell`.
-    pub fn new(cell: &'a Cell, planner: PlannerOptions) -> Self {
-        MoveCache {
-            cell,
-            planner,
-            obstacles: cell.obstacle_bodies(),
-            moves: HashMap::new(),
-        }
-    }
-
-    /// Robot `r`'s certified move between two nodes, planned on first use.
-    pub fn get(
-        &mut self,
-        r: usize,
-        from: usize,
-        to: usize,
-    ) -> Result<Arc<PlannedMove>, MoveFailure> {
-        let (a, b) = (from.min(to), from.max(to));
-        let (cell, planner, obstacles) = (self.cell, &self.planner, &self.obstacles);
-        let planned = self
-            .moves
-            .entry((r, a, b))
-            .or_insert_with(|| certified_move(cell, r, a, b, planner, obstacles).map(Arc::new))
-            .clone()?;
-        Ok(if from <= to {
-            planned
-        } else {
-            Arc::new(reversed(&planned))
-        })
-    }
-}
-
-/// The same move run backwards: the same poses, visited in reverse order.
-fn reversed(m: &PlannedMove) -> PlannedMove {
-    let samples = m
-        .samples
-        .iter()
-        .rev()
-        .map(|s| Sample {
-            t: m.duration - s.t,
-            vel: -s.vel,
-            omega: -s.omega,
-            ..*s
-        })
-        .collect();
-    PlannedMove {
-        duration: m.duration,
-        path: m.path.iter().rev().copied().collect(),
-        samples,
-    }
-}
-
 /// Why a schedule cannot be built.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BuildError {
@@ -242,12 +177,13 @@ impl BuildError {
 
 impl Schedule {
     /// Times every robot's route: from home at t = 0, each move as planned, each task held
-    /// for its duration, back home; `delays` insert waits before given moves.
+    /// for its duration, back home; `delays` insert waits before given moves. The moves come
+    /// from the store (planned there if they were not yet).
     pub fn build(
         cell: &Cell,
         routes: &[Vec<usize>],
         delays: &[Delay],
-        moves: &mut MoveCache,
+        moves: &MoveStore,
     ) -> Result<Schedule, BuildError> {
         let mut robots = Vec::with_capacity(routes.len());
         for (r, route) in routes.iter().enumerate() {
@@ -367,7 +303,7 @@ fn build_robot(
     r: usize,
     route: &[usize],
     delays: &[Delay],
-    moves: &mut MoveCache,
+    moves: &MoveStore,
 ) -> Result<RobotSchedule, BuildError> {
     let home = node_pose(cell, r, 0);
     let rest = |t: f64, pose: Pose| Sample {

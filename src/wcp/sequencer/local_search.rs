@@ -24,20 +24,20 @@ pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch
 }
 
 /// The best of the moves offered from one anchor, if it beats the plan.
-struct Pick {
+pub(super) struct Pick {
     bar: Obj,
-    best: Option<Move>,
+    pub best: Option<Move>,
 }
 
 impl Pick {
-    fn new(plan: &Plan) -> Pick {
+    pub fn new(plan: &Plan) -> Pick {
         Pick {
             bar: plan.obj(),
             best: None,
         }
     }
 
-    fn offer(
+    pub fn offer(
         &mut self,
         model: &Model,
         plan: &Plan,
