@@ -84,10 +84,12 @@ enum Command {
         /// time) instead of the progress bar.
         #[arg(long)]
         progress: bool,
-        /// Plan and certify every move of every robot before sequencing, instead of only those
-        /// the sequencer's plans use (slower; the exported graph is then all exact).
-        #[arg(long)]
-        plan_all: bool,
+        /// Which moves are planned and certified before sequencing: `all` (every move of every
+        /// robot), `lazy` (those between homes and tasks; the sequencer works on lower bounds
+        /// of the others and plans those its plans use) or `auto` (`all` for cells of at most
+        /// 100,000 moves, else `lazy`).
+        #[arg(long, default_value = "auto", value_parser = ["auto", "lazy", "all"])]
+        planning: String,
     },
     /// Time and check given sequences (the `sequences` object of a solve result).
     ///
@@ -229,7 +231,7 @@ fn main() -> ExitCode {
             export_graph,
             time_limit,
             progress,
-            plan_all,
+            planning,
         } => cli::solve::run_solve(
             &cell,
             &out,
@@ -240,7 +242,11 @@ fn main() -> ExitCode {
                 // Beyond what a Duration holds, no limit at all.
                 time_limit: time_limit.and_then(|t| std::time::Duration::try_from_secs_f64(t).ok()),
                 progress,
-                plan_all,
+                planning: match planning.as_str() {
+                    "all" => workcell::wcp::Planning::All,
+                    "lazy" => workcell::wcp::Planning::Lazy,
+                    _ => workcell::wcp::Planning::Auto,
+                },
             },
         ),
         Command::Evaluate {

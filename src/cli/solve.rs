@@ -189,8 +189,8 @@ pub struct SolveArgs<'a> {
     pub time_limit: Option<Duration>,
     /// `--progress`.
     pub progress: bool,
-    /// `--plan-all`.
-    pub plan_all: bool,
+    /// `--planning`.
+    pub planning: wcp::Planning,
 }
 
 /// Solves the cell; exit status 0 collision-free, 1 none found.
@@ -200,7 +200,7 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
     let mut opts = SolveOptions {
         max_iterations: args.max_iterations,
         time_limit: args.time_limit,
-        plan_all: args.plan_all,
+        planning: args.planning,
         ..SolveOptions::default()
     };
     opts.sequencer.seed = args.seed;

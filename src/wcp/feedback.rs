@@ -27,11 +27,28 @@ pub struct SolveOptions {
     /// best certified plan found so far. `None`: no limit, and the result depends only on
     /// the input and the seed.
     pub time_limit: Option<Duration>,
-    /// Plan and certify every move of every robot before sequencing (robots × nodes² moves),
-    /// instead of only the moves between homes and tasks and those the plans under
-    /// consideration use. For comparisons and exports of the whole graph.
-    pub plan_all: bool,
+    /// Which moves are planned before sequencing.
+    pub planning: Planning,
 }
+
+/// Which moves [`prepare`] plans and certifies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Planning {
+    /// [`Planning::All`] for cells of at most [`AUTO_ALL_MAX_MOVES`] moves, else
+    /// [`Planning::Lazy`].
+    #[default]
+    Auto,
+    /// Only the moves between homes and the tasks their robots may do; the sequencer works on
+    /// lower bounds of the others and plans those its plans use.
+    Lazy,
+    /// Every move of every robot between every two of its nodes (robots × nodes² / 2).
+    All,
+}
+
+/// Cells with at most this many moves (robots × unordered pairs of their nodes) are planned
+/// whole under [`Planning::Auto`]: a second or two of planning, and the sequencer then
+/// searches on exact times from the start.
+pub const AUTO_ALL_MAX_MOVES: usize = 100_000;
 
 impl Default for SolveOptions {
     fn default() -> Self {
@@ -41,7 +58,7 @@ impl Default for SolveOptions {
             planner: PlannerOptions::default(),
             check: CheckOptions::default(),
             time_limit: None,
-            plan_all: false,
+            planning: Planning::Auto,
         }
     }
 }
@@ -67,8 +84,8 @@ impl Progress for () {}
 /// Wall time spent in each stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
-    /// Planning and certifying the moves between homes and tasks (every move with
-    /// [`SolveOptions::plan_all`]).
+    /// Planning and certifying the moves between homes and tasks (every move, see
+    /// [`Planning`]).
     pub planning: Duration,
     /// Building the lower bounds.
     pub graph: Duration,
@@ -107,7 +124,7 @@ pub struct Prepared {
     /// The lower bound of every move.
     pub bounds: Arc<Bounds>,
     /// The moves every sequencing starts from: those between homes and allowed tasks (all
-    /// of them with [`SolveOptions::plan_all`]), per robot, both ways.
+    /// of them, see [`Planning`]), per robot, both ways.
     pub known: Arc<ExactArcs>,
     /// When [`SolveOptions::time_limit`] runs out.
     pub deadline: Option<Instant>,
@@ -143,7 +160,7 @@ pub struct Solved {
 }
 
 /// Builds the lower bounds, plans and certifies every move between a home and a task its
-/// robot may do (every move with [`SolveOptions::plan_all`]). A task that no allowed robot
+/// robot may do (every move, see [`Planning`]). A task that no allowed robot
 /// can reach is an input error. The time limit counts from here.
 pub fn prepare(
     cell: &Cell,
@@ -159,11 +176,22 @@ pub fn prepare(
     times.graph = clock.elapsed();
     let clock = Instant::now();
     let moves = MoveStore::new(cell, &opts.planner);
+    let all_moves: usize = (0..cell.robots.len())
+        .map(|r| {
+            let n = robot_nodes(cell, r).len();
+            n * (n - 1) / 2
+        })
+        .sum();
+    let plan_all = match opts.planning {
+        Planning::Auto => all_moves <= AUTO_ALL_MAX_MOVES,
+        Planning::Lazy => false,
+        Planning::All => true,
+    };
     let mut pairs: Vec<(usize, usize, usize)> = Vec::new();
     for r in 0..cell.robots.len() {
         let nodes = robot_nodes(cell, r);
         for (i, &a) in nodes.iter().enumerate() {
-            let last = if opts.plan_all || a == 0 { nodes.len() } else { 0 };
+            let last = if plan_all || a == 0 { nodes.len() } else { 0 };
             pairs.extend(nodes[i + 1..last.max(i + 1)].iter().map(|&b| (r, a, b)));
         }
     }

@@ -25,7 +25,8 @@ pub mod sequencer;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
-    describe, prepare, sequencer_error, solve, Iteration, Prepared, Progress, Remedy, SolveOptions,
+    describe, prepare, sequencer_error, solve, Iteration, Planning, Prepared, Progress, Remedy,
+    SolveOptions, AUTO_ALL_MAX_MOVES,
     Solved, StageTimes,
 };
 pub use graph::{

@@ -83,7 +83,6 @@ pub fn sequence_with(
         }
         // Every move of the plan is known now: its true costs.
         let done = missing.is_empty() || exact_all;
-        if std::env::var_os("WCP_DEBUG").is_some() { eprintln!("round {round}: makespan {} missing {} exact_all {exact_all} t={:?}", sol.makespan, missing.len(), std::time::Instant::now()); }
         let certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), done);
         if certified.makespan.is_finite() && best.as_ref().is_none_or(|b| better(&certified, b)) {
             best = Some(certified);

@@ -18,9 +18,9 @@ const DENSE_MAX_ARCS: usize = 1 << 24;
 /// (granular neighbourhoods) and re-examines only what a change touched.
 pub const GRANULAR_FROM_TASKS: usize = 200;
 /// Nearest tasks per task in a granular neighbourhood.
-const NEIGHBOURS: usize = 16;
+const NEIGHBOURS: usize = 8;
 /// Robots per task (those with the nearest homes) whose routes' ends a granular search tries.
-const HOME_CANDIDATES: usize = 12;
+const HOME_CANDIDATES: usize = 4;
 
 /// Travel costs: a matrix, or lower bounds computed when asked plus the exact arcs.
 enum Costs {
