@@ -43,7 +43,11 @@ fn stages(c: &mut Criterion) {
         group.bench_function("sequencing", |b| {
             b.iter_batched(
                 || wcp::prepare(&cell, &opts, &()).unwrap(),
-                |prepared| wcp::sequence(&cell, &prepared, &[], &opts).unwrap().makespan,
+                |prepared| {
+                    wcp::sequence(&cell, &prepared, &[], &opts)
+                        .unwrap()
+                        .makespan
+                },
                 criterion::BatchSize::LargeInput,
             )
         });

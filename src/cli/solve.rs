@@ -53,7 +53,10 @@ impl Lines {
     fn line(&self) -> String {
         let stage = self.stage.lock().expect("no panic while held").clone();
         let stage = if stage == "planning" {
-            let (k, n) = (self.planned.load(Ordering::Relaxed), self.to_plan.load(Ordering::Relaxed));
+            let (k, n) = (
+                self.planned.load(Ordering::Relaxed),
+                self.to_plan.load(Ordering::Relaxed),
+            );
             format!("planning moves {k}/{n}")
         } else {
             stage
@@ -173,7 +176,9 @@ impl Progress for Bar {
         self.bar
             .set_message(format!("{k}: makespan {makespan:.3}, {verdict}"));
         self.bar.tick();
-        self.stage(format!("checked round {k} (makespan {makespan:.3}, {verdict})"));
+        self.stage(format!(
+            "checked round {k} (makespan {makespan:.3}, {verdict})"
+        ));
     }
 }
 

@@ -171,7 +171,11 @@ pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError>
     }
     for (t, task) in cell.tasks.iter().enumerate() {
         let node = t + 1;
-        if task.robots.iter().any(|&r| store.duration(r, 0, node).is_ok()) {
+        if task
+            .robots
+            .iter()
+            .any(|&r| store.duration(r, 0, node).is_ok())
+        {
             continue;
         }
         let reasons: Vec<String> = task

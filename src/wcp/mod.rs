@@ -26,15 +26,14 @@ pub mod sequencer;
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
     describe, prepare, sequencer_error, solve, Iteration, Planning, Prepared, Progress, Remedy,
-    SolveOptions, AUTO_ALL_MAX_MOVES,
-    Solved, StageTimes,
+    SolveOptions, Solved, StageTimes, AUTO_ALL_MAX_MOVES,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,
 };
-pub use moves::{bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore};
-pub use picture::picture;
-pub use schedule::{
-    Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,
+pub use moves::{
+    bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore,
 };
+pub use picture::picture;
+pub use schedule::{Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment};
 pub use sequence::{sequence, sequence_with};

@@ -255,7 +255,9 @@ impl MoveStore {
 
     fn slot(&self, r: usize, a: usize, b: usize) -> Arc<Slot> {
         let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
-        let mut map = self.shards[shard].lock().expect("no thread panics holding it");
+        let mut map = self.shards[shard]
+            .lock()
+            .expect("no thread panics holding it");
         map.entry((r, a, b)).or_default().clone()
     }
 
@@ -298,7 +300,9 @@ impl MoveStore {
     pub fn known(&self, r: usize, from: usize, to: usize) -> Option<Result<f64, MoveFailure>> {
         let (a, b) = (from.min(to), from.max(to));
         let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
-        let map = self.shards[shard].lock().expect("no thread panics holding it");
+        let map = self.shards[shard]
+            .lock()
+            .expect("no thread panics holding it");
         let slot = map.get(&(r, a, b))?;
         slot.forward
             .get()

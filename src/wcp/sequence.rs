@@ -62,14 +62,14 @@ pub fn sequence_with(
         )
         .map_err(|e| sequencer_error(cell, e))?;
         let on_best = |m: f64| progress.best(m);
-        let sol = match sequencer::solve_from(&inst, conflicts, &seq_opts, start.as_deref(), &on_best)
-        {
-            Ok(sol) => sol,
-            // A plan through a move that turned out impossible may be the only one the
-            // bounds allowed: with a certified plan in hand, keep it.
-            Err(sequencer::SequencerError::Infeasible) if best.is_some() => break,
-            Err(e) => return Err(sequencer_error(cell, e)),
-        };
+        let sol =
+            match sequencer::solve_from(&inst, conflicts, &seq_opts, start.as_deref(), &on_best) {
+                Ok(sol) => sol,
+                // A plan through a move that turned out impossible may be the only one the
+                // bounds allowed: with a certified plan in hand, keep it.
+                Err(sequencer::SequencerError::Infeasible) if best.is_some() => break,
+                Err(e) => return Err(sequencer_error(cell, e)),
+            };
         let missing = bounded_moves(&inst, &sol.sequences);
         let times = prepared.moves.plan_all(&missing, &|| ());
         let exact_all = missing
@@ -84,7 +84,8 @@ pub fn sequence_with(
         // Every move of the plan is known now: its true costs.
         let done = missing.is_empty() || exact_all;
         let certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), done);
-        if certified.makespan.is_finite() && best.as_ref().is_none_or(|b| better(&certified, b)) {
+        // Ties go to the later round: it knows more (and may have proved its plan optimal).
+        if certified.makespan.is_finite() && best.as_ref().is_none_or(|b| !better(b, &certified)) {
             best = Some(certified);
         }
         let out_of_time = prepared.deadline.is_some_and(|d| Instant::now() >= d);

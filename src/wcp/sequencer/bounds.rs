@@ -42,11 +42,7 @@ pub struct Bounds {
 
 impl Bounds {
     /// Bounds for robots with these limits and homes, and these task poses.
-    pub fn new(
-        limits: Vec<BoundLimits>,
-        homes: Vec<(Vec2, f64)>,
-        tasks: Vec<(Vec2, f64)>,
-    ) -> Self {
+    pub fn new(limits: Vec<BoundLimits>, homes: Vec<(Vec2, f64)>, tasks: Vec<(Vec2, f64)>) -> Self {
         assert_eq!(limits.len(), homes.len(), "one home per robot");
         Bounds {
             limits,
@@ -82,11 +78,7 @@ impl Bounds {
         // The planner measures the straight segment as `(to − from).norm()`, and the turn
         // from the start's angle to the goal's.
         let trans = rest_to_rest_time((b - a).norm(), l.max_speed, l.max_accel);
-        let rot = rest_to_rest_time(
-            angle_between(ta, tb),
-            l.max_turn_rate,
-            l.max_angular_accel,
-        );
+        let rot = rest_to_rest_time(angle_between(ta, tb), l.max_turn_rate, l.max_angular_accel);
         trans.max(rot)
     }
 
@@ -103,11 +95,8 @@ impl Bounds {
             .iter()
             .map(|l| {
                 let trans = rest_to_rest_time(diagonal, l.max_speed, l.max_accel);
-                let rot = rest_to_rest_time(
-                    std::f64::consts::PI,
-                    l.max_turn_rate,
-                    l.max_angular_accel,
-                );
+                let rot =
+                    rest_to_rest_time(std::f64::consts::PI, l.max_turn_rate, l.max_angular_accel);
                 trans.max(rot)
             })
             .fold(0.0, f64::max)

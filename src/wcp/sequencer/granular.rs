@@ -52,7 +52,12 @@ impl Active {
 }
 
 /// Improves `plan` until no granular move from an active task does.
-pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch, active: &mut Active) {
+pub(super) fn local_search(
+    model: &Model,
+    plan: &mut Plan,
+    scratch: &mut Scratch,
+    active: &mut Active,
+) {
     let mut critical = plan.critical();
     while let Some(t) = active.pop() {
         let mut pick = Pick::new(plan);
@@ -80,7 +85,14 @@ pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch
 
 /// Moves the segment of `len` tasks that starts at task `t` next to a near task of its first
 /// or last task, or to an end of a near robot's route, in place or reversed.
-fn shifts(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t: usize, len: usize) {
+fn shifts(
+    model: &Model,
+    plan: &Plan,
+    scratch: &mut Scratch,
+    pick: &mut Pick,
+    t: usize,
+    len: usize,
+) {
     let near = model.neighbours.as_ref().expect("a granular model");
     let c = |r: usize, a: usize, b: usize| model.c(r, a, b);
     let (r1, i) = plan.pos[t];
@@ -93,7 +105,13 @@ fn shifts(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t:
     let (p, n, s0, sl) = (route[i - 1], route[i + len], seg[0], seg[len - 1]);
     let dur: f64 = seg.iter().map(|&v| model.dn[v]).sum();
     let inner = |r: usize, rev: bool| -> f64 {
-        let arc = |w: &[usize]| if rev { c(r, w[1], w[0]) } else { c(r, w[0], w[1]) };
+        let arc = |w: &[usize]| {
+            if rev {
+                c(r, w[1], w[0])
+            } else {
+                c(r, w[0], w[1])
+            }
+        };
         seg.windows(2).map(arc).sum()
     };
     let cut = c(r1, p, n) - (c(r1, p, s0) + inner(r1, false) + dur + c(r1, sl, n));
@@ -114,7 +132,11 @@ fn shifts(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t:
         }
     }
     for &r2 in &near.homes[t] {
-        let last = if r2 == r1 { l - len } else { plan.routes[r2].len() - 2 };
+        let last = if r2 == r1 {
+            l - len
+        } else {
+            plan.routes[r2].len() - 2
+        };
         gaps.extend([(r2, 0), (r2, last)]);
     }
     gaps.sort_unstable();
@@ -180,7 +202,8 @@ fn swaps(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t: 
             let (v, w) = (ra[lo], ra[hi]);
             let delta = if hi == lo + 1 {
                 let (p, n) = (ra[lo - 1], ra[hi + 1]);
-                (c(r1, p, w) + c(r1, w, v) + c(r1, v, n)) - (c(r1, p, v) + c(r1, v, w) + c(r1, w, n))
+                (c(r1, p, w) + c(r1, w, v) + c(r1, v, n))
+                    - (c(r1, p, v) + c(r1, v, w) + c(r1, w, n))
             } else {
                 let (p1, n1, p2, n2) = (ra[lo - 1], ra[lo + 1], ra[hi - 1], ra[hi + 1]);
                 (c(r1, p1, w) + c(r1, w, n1) + c(r1, p2, v) + c(r1, v, n2))
@@ -224,6 +247,12 @@ fn reversals(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick,
         let delta = (c(r, p, route[hi]) + rev + c(r, route[lo], n))
             - (c(r, p, route[lo]) + fwd + c(r, route[hi], n));
         let times = [(r, plan.time[r] + delta)];
-        pick.offer(model, plan, Move::Reverse { r, i: lo, j: hi }, &times, scratch);
+        pick.offer(
+            model,
+            plan,
+            Move::Reverse { r, i: lo, j: hi },
+            &times,
+            scratch,
+        );
     }
 }

@@ -289,9 +289,8 @@ impl Model {
                     .map(|u| (distance(t, u), u))
                     .collect();
                 let k = NEIGHBOURS.min(all.len());
-                let order = |x: &(f64, usize), y: &(f64, usize)| {
-                    x.0.total_cmp(&y.0).then(x.1.cmp(&y.1))
-                };
+                let order =
+                    |x: &(f64, usize), y: &(f64, usize)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
                 if k < all.len() {
                     all.select_nth_unstable_by(k, order);
                     all.truncate(k);

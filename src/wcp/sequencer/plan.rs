@@ -293,9 +293,19 @@ impl Plan {
             Move::Insert { t, r, gap } => vec![t + 1, at(r, gap), at(r, gap + 1)],
             Move::Remove { r, i } => vec![at(r, i - 1), at(r, i), at(r, i + 1)],
             Move::Shift {
-                r1, i, len, r2, gap, ..
+                r1,
+                i,
+                len,
+                r2,
+                gap,
+                ..
             } => {
-                let mut out = vec![at(r1, i - 1), at(r1, i), at(r1, i + len - 1), at(r1, i + len)];
+                let mut out = vec![
+                    at(r1, i - 1),
+                    at(r1, i),
+                    at(r1, i + len - 1),
+                    at(r1, i + len),
+                ];
                 if r1 == r2 {
                     let node = |k: usize| if k < i { at(r1, k) } else { at(r1, k + len) };
                     out.extend([node(gap), node(gap + 1)]);
