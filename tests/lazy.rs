@@ -170,3 +170,24 @@ fn lazy_granular_sequencing_is_the_same_on_1_2_and_4_threads() {
     assert_eq!(one, run(2));
     assert_eq!(one, run(4));
 }
+
+#[test]
+fn the_store_plans_the_same_moves_as_planning_among_every_obstacle() {
+    // Many fixtures: most moves see only a few of them.
+    let cell = cell(2, 14, 14, 7);
+    let store = wcp::MoveStore::new(&cell, &Default::default());
+    let obstacles = cell.obstacle_bodies();
+    for r in 0..cell.robots.len() {
+        let nodes = robot_nodes(&cell, r);
+        for (i, &a) in nodes.iter().enumerate() {
+            for &b in &nodes[i + 1..] {
+                let all = wcp::certified_move(&cell, r, a, b, &Default::default(), &obstacles);
+                assert_eq!(
+                    store.get(r, a, b).map(|m| (*m).clone()),
+                    all,
+                    "robot {r} {a} -> {b}"
+                );
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! The loop of the Work-Cell Problem: sequence, schedule, check, feed the first collision
 //! back, until the schedule is collision-free.
 
-use super::graph::check_reachable;
+use super::graph::{check_reachable, plan_reaches};
 use super::moves::{bounds, robot_nodes, MoveStore};
 use super::schedule::{Activity, BuildError, Collision, Delay, Schedule, Segment};
 use super::sequence::sequence_with;
@@ -38,8 +38,8 @@ pub enum Planning {
     /// [`Planning::Lazy`].
     #[default]
     Auto,
-    /// Only the moves between homes and the tasks their robots may do; the sequencer works on
-    /// lower bounds of the others and plans those its plans use.
+    /// For each task, the move from the home of its nearest allowed robot that can reach it;
+    /// the sequencer works on lower bounds of the others and plans those its plans use.
     Lazy,
     /// Every move of every robot between every two of its nodes (robots × nodes² / 2).
     All,
@@ -84,8 +84,7 @@ impl Progress for () {}
 /// Wall time spent in each stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
-    /// Planning and certifying the moves between homes and tasks (every move, see
-    /// [`Planning`]).
+    /// Planning and certifying the moves [`prepare`] plans (see [`Planning`]).
     pub planning: Duration,
     /// Building the lower bounds.
     pub graph: Duration,
@@ -123,8 +122,8 @@ pub struct Prepared {
     pub moves: MoveStore,
     /// The lower bound of every move.
     pub bounds: Arc<Bounds>,
-    /// The moves every sequencing starts from: those between homes and allowed tasks (all
-    /// of them, see [`Planning`]), per robot, both ways.
+    /// The moves every sequencing starts from: those [`prepare`] planned, per robot, both
+    /// ways.
     pub known: Arc<ExactArcs>,
     /// When [`SolveOptions::time_limit`] runs out.
     pub deadline: Option<Instant>,
@@ -159,8 +158,9 @@ pub struct Solved {
     pub times: StageTimes,
 }
 
-/// Builds the lower bounds, plans and certifies every move between a home and a task its
-/// robot may do (every move, see [`Planning`]). A task that no allowed robot
+/// Builds the lower bounds, plans and certifies for every task the move from the home of
+/// its nearest allowed robot (the next nearest when that one fails), or every move (see
+/// [`Planning`]). A task that no allowed robot
 /// can reach is an input error. The time limit counts from here.
 pub fn prepare(
     cell: &Cell,
@@ -187,19 +187,25 @@ pub fn prepare(
         Planning::Lazy => false,
         Planning::All => true,
     };
-    let mut pairs: Vec<(usize, usize, usize)> = Vec::new();
-    for r in 0..cell.robots.len() {
-        let nodes = robot_nodes(cell, r);
-        for (i, &a) in nodes.iter().enumerate() {
-            let last = if plan_all || a == 0 { nodes.len() } else { 0 };
-            pairs.extend(nodes[i + 1..last.max(i + 1)].iter().map(|&b| (r, a, b)));
+    let pairs: Vec<(usize, usize, usize)> = if plan_all {
+        let mut pairs = Vec::with_capacity(all_moves);
+        for r in 0..cell.robots.len() {
+            let nodes = robot_nodes(cell, r);
+            for (i, &a) in nodes.iter().enumerate() {
+                pairs.extend(nodes[i + 1..].iter().map(|&b| (r, a, b)));
+            }
         }
-    }
-    progress.planning(pairs.len());
-    let durations = moves.plan_all(&pairs, &|| progress.move_planned());
+        progress.planning(pairs.len());
+        moves.plan_all(&pairs, &|| progress.move_planned());
+        pairs
+    } else {
+        progress.planning(cell.tasks.len());
+        plan_reaches(cell, &moves, &bounds, &|| progress.move_planned())
+    };
     check_reachable(cell, &moves)?;
     let mut known: ExactArcs = vec![Default::default(); cell.robots.len()];
-    for (&(r, a, b), &d) in pairs.iter().zip(&durations) {
+    for &(r, a, b) in &pairs {
+        let d = moves.duration(r, a, b).unwrap_or(f64::INFINITY);
         known[r].insert((a, b), d);
         known[r].insert((b, a), d);
     }

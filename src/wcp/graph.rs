@@ -142,16 +142,64 @@ pub struct GraphFileArc {
     pub exact: bool,
 }
 
+/// Plans, for every task, the moves from the homes of its allowed robots, nearest robot
+/// first by `bounds`, until one succeeds (in parallel over the tasks). Returns the moves
+/// planned, as `(robot, 0, node)`.
+pub fn plan_reaches(
+    cell: &Cell,
+    store: &MoveStore,
+    bounds: &Bounds,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<(usize, usize, usize)> {
+    use rayon::prelude::*;
+    let per_task: Vec<Vec<(usize, usize, usize)>> = (0..cell.tasks.len())
+        .into_par_iter()
+        .map(|t| {
+            let node = t + 1;
+            let mut robots = cell.tasks[t].robots.clone();
+            robots.sort_by(|&a, &b| {
+                bounds
+                    .bound(a, 0, node)
+                    .total_cmp(&bounds.bound(b, 0, node))
+                    .then(a.cmp(&b))
+            });
+            let mut planned = Vec::new();
+            for r in robots {
+                planned.push((r, 0, node));
+                let ok = store.duration(r, 0, node).is_ok();
+                progress();
+                if ok {
+                    break;
+                }
+            }
+            planned
+        })
+        .collect();
+    per_task.into_iter().flatten().collect()
+}
+
 /// Refuses a cell with a task that none of its allowed robots can reach from home: exit
-/// status 2, naming the task and each robot's reason. Plans every move between a home and
-/// an allowed task that the store has not planned yet.
+/// status 2, naming the task and each robot's reason. Plans the moves between a home and an
+/// allowed task that it needs and the store has not planned yet: none after
+/// [`plan_reaches`] when the cell can be used.
 pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError> {
     // A home from which no move can start is the home's fault, not its tasks'.
     for (r, robot) in cell.robots.iter().enumerate() {
-        let mut moves = 0;
+        let nodes = robot_nodes(cell, r);
+        let home_blocked = |why: &Result<f64, MoveFailure>| {
+            matches!(why, Err(MoveFailure::Blocked { end: "start", .. }))
+        };
+        // Only a robot whose known home moves all start blocked can be at fault: then every
+        // one of them is planned to find out.
+        let known: Vec<_> = nodes[1..]
+            .iter()
+            .filter_map(|&n| store.known(r, 0, n))
+            .collect();
+        if known.is_empty() || !known.iter().all(home_blocked) {
+            continue;
+        }
         let mut blocked = Vec::new();
-        for node in robot_nodes(cell, r).into_iter().skip(1) {
-            moves += 1;
+        for &node in &nodes[1..] {
             if let Err(MoveFailure::Blocked {
                 end: "start",
                 obstacle,
@@ -160,7 +208,7 @@ pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError>
                 blocked.push(obstacle);
             }
         }
-        if moves > 0 && blocked.len() == moves {
+        if blocked.len() == nodes.len() - 1 {
             let reason = format!(
                 "no move can start from this home: the robot is too close to obstacle \"{}\" \
                  for the planner's clearance (delta + 2%, swept over each move's rotation)",
@@ -171,10 +219,13 @@ pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError>
     }
     for (t, task) in cell.tasks.iter().enumerate() {
         let node = t + 1;
-        if task
-            .robots
-            .iter()
-            .any(|&r| store.duration(r, 0, node).is_ok())
+        // A move already known to succeed settles it without planning any other.
+        let known_ok = |r: &usize| matches!(store.known(*r, 0, node), Some(Ok(_)));
+        if task.robots.iter().any(known_ok)
+            || task
+                .robots
+                .iter()
+                .any(|&r| store.duration(r, 0, node).is_ok())
         {
             continue;
         }
