@@ -7,6 +7,11 @@
 //! also a local optimum (an optimum, when the exact search solved it) of the fully planned
 //! problem: every alternative it rejected only gets longer once planned.
 //!
+//! The rounds stop when the plan's moves were all exact already (or their bounds were their
+//! times), when planning them left its makespan as the search saw it, when
+//! [`STALL_ROUNDS`] rounds in a row found no better certified plan, or when the time limit
+//! is out; the best certified plan of all rounds is returned.
+//!
 //! A call starts from the moves of [`Prepared::known`] and learns only from the moves its own
 //! rounds plan (the store plans each move once for everyone): its result never depends on
 //! what other calls, in other threads, planned before it.
@@ -18,7 +23,12 @@ use std::sync::Arc;
 use std::time::Instant;
 
 /// Later rounds search this many times less than the first.
-const WARM_ROUND_SHARE: usize = 4;
+const WARM_ROUND_SHARE: usize = 8;
+/// A plan whose makespan, once its moves are exact, is within this relative amount of what
+/// the search saw is settled: the moves that changed do not lie on its longest route.
+const SETTLED_TOL: f64 = 1e-12;
+/// Rounds in a row without a better certified plan after which the best one is kept.
+const STALL_ROUNDS: usize = 3;
 
 /// The plan of the sequencer for `conflicts` (see [`sequencer::solve`]), every move of it
 /// planned and certified, its makespan computed on them. With a time limit the best such
@@ -52,6 +62,7 @@ pub fn sequence_with(
     let mut known: Arc<ExactArcs> = prepared.known.clone();
     let mut start: Option<Vec<Vec<usize>>> = start.map(<[_]>::to_vec);
     let mut best: Option<Solution> = None;
+    let mut stalled = 0;
     for round in 1.. {
         progress.sequencing(round);
         let inst = Instance::bounded(
@@ -82,14 +93,26 @@ pub fn sequence_with(
             table[r].insert((b, a), t);
         }
         // Every move of the plan is known now: its true costs.
-        let done = missing.is_empty() || exact_all;
-        let certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), done);
-        // Ties go to the later round: it knows more (and may have proved its plan optimal).
-        if certified.makespan.is_finite() && best.as_ref().is_none_or(|b| !better(b, &certified)) {
-            best = Some(certified);
+        let exact = missing.is_empty() || exact_all;
+        let certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), exact);
+        // The makespan the search aimed at is the true one: the moves that changed lie off
+        // the longest route.
+        let settled = certified.violations == sol.violations
+            && certified.makespan <= sol.makespan * (1.0 + SETTLED_TOL);
+        stalled += 1;
+        if certified.makespan.is_finite() {
+            if best.as_ref().is_none_or(|b| better(&certified, b)) {
+                stalled = 0;
+            }
+            // Ties go to the later round: it knows more (and may have proved its plan
+            // optimal).
+            if best.as_ref().is_none_or(|b| !better(b, &certified)) {
+                best = Some(certified);
+            }
         }
         let out_of_time = prepared.deadline.is_some_and(|d| Instant::now() >= d);
-        if done || (out_of_time && best.is_some()) {
+        let stop = exact || settled || out_of_time || stalled >= STALL_ROUNDS;
+        if stop && best.is_some() {
             break;
         }
         start = Some(sol.sequences);

@@ -139,8 +139,15 @@ fn shifts(
         };
         gaps.extend([(r2, 0), (r2, last)]);
     }
-    gaps.sort_unstable();
-    gaps.dedup();
+    // A gap named twice is looked at once (first place kept: the order stays deterministic).
+    let mut k = 0;
+    while k < gaps.len() {
+        if gaps[..k].contains(&gaps[k]) {
+            gaps.remove(k);
+        } else {
+            k += 1;
+        }
+    }
     for (r2, gap) in gaps {
         if (r2 == r1 && gap + 1 == i) || !seg.iter().all(|&v| model.can(r2, v - 1)) {
             continue;
@@ -221,38 +228,49 @@ fn swaps(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t: 
 }
 
 /// Reverses the stretch between task `t` and a near task on its route so that the two become
-/// joined by an arc (2-opt).
+/// joined by an arc (2-opt). The arc sums of the stretches grow outwards from `t`, once.
 fn reversals(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t: usize) {
     let near = model.neighbours.as_ref().expect("a granular model");
     let c = |r: usize, a: usize, b: usize| model.c(r, a, b);
     let (r, i) = plan.pos[t];
     let route = &plan.routes[r];
+    // Positions of the near tasks on t's route: after t (reverse i + 1..=q, t → u) and
+    // before it (reverse q + 1..=i, u → t).
+    let mut after: Vec<usize> = Vec::new();
+    let mut before: Vec<usize> = Vec::new();
     for u in near.of(t) {
         let (ru, q) = plan.pos[u];
-        if ru != r {
-            continue;
+        if ru == r && q > i + 1 {
+            after.push(q);
+        } else if ru == r && q + 1 < i {
+            before.push(q);
         }
-        // Reversing i + 1..=q joins t to u (t → u); reversing q + 1..=i when u comes
-        // first joins u to t.
-        let (lo, hi) = if q > i { (i + 1, q) } else { (q + 1, i) };
-        if hi <= lo {
-            continue;
-        }
-        let (mut fwd, mut rev) = (0.0, 0.0);
-        for k in lo + 1..=hi {
-            fwd += c(r, route[k - 1], route[k]);
-            rev += c(r, route[k], route[k - 1]);
-        }
+    }
+    let mut offer = |lo: usize, hi: usize, fwd: f64, rev: f64| {
         let (p, n) = (route[lo - 1], route[hi + 1]);
         let delta = (c(r, p, route[hi]) + rev + c(r, route[lo], n))
             - (c(r, p, route[lo]) + fwd + c(r, route[hi], n));
         let times = [(r, plan.time[r] + delta)];
-        pick.offer(
-            model,
-            plan,
-            Move::Reverse { r, i: lo, j: hi },
-            &times,
-            scratch,
-        );
+        pick.offer(model, plan, Move::Reverse { r, i: lo, j: hi }, &times, scratch);
+    };
+    if let Some(&far) = after.iter().max() {
+        let (mut fwd, mut rev) = (0.0, 0.0);
+        for hi in i + 2..=far {
+            fwd += c(r, route[hi - 1], route[hi]);
+            rev += c(r, route[hi], route[hi - 1]);
+            if after.contains(&hi) {
+                offer(i + 1, hi, fwd, rev);
+            }
+        }
+    }
+    if let Some(&far) = before.iter().min() {
+        let (mut fwd, mut rev) = (0.0, 0.0);
+        for lo in (far + 1..i).rev() {
+            fwd += c(r, route[lo], route[lo + 1]);
+            rev += c(r, route[lo + 1], route[lo]);
+            if before.contains(&(lo - 1)) {
+                offer(lo, i, fwd, rev);
+            }
+        }
     }
 }
