@@ -251,7 +251,13 @@ fn reversals(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick,
         let delta = (c(r, p, route[hi]) + rev + c(r, route[lo], n))
             - (c(r, p, route[lo]) + fwd + c(r, route[hi], n));
         let times = [(r, plan.time[r] + delta)];
-        pick.offer(model, plan, Move::Reverse { r, i: lo, j: hi }, &times, scratch);
+        pick.offer(
+            model,
+            plan,
+            Move::Reverse { r, i: lo, j: hi },
+            &times,
+            scratch,
+        );
     };
     if let Some(&far) = after.iter().max() {
         let (mut fwd, mut rev) = (0.0, 0.0);

@@ -30,6 +30,10 @@ enum Costs {
     Lazy {
         bounds: Arc<Bounds>,
         exact: FxHashMap<u64, f64>,
+        /// The costs between each task and its near tasks (granular models), computed once:
+        /// `[((r · tasks + t) · NEIGHBOURS + k) · 2]` from t to its k-th near task, `+ 1`
+        /// back. Nearly every cost a granular search asks for is one of these.
+        near: Vec<f64>,
     },
 }
 
@@ -191,6 +195,7 @@ impl Model {
         }
         if tasks >= GRANULAR_FROM_TASKS {
             model.neighbours = Some(model.neighbours(inst));
+            model.cache_near_costs();
         }
         Ok(model)
     }
@@ -237,6 +242,7 @@ impl Model {
                 Costs::Lazy {
                     bounds: bounds.clone(),
                     exact: map,
+                    near: Vec::new(),
                 }
             }
             travel => {
@@ -374,15 +380,57 @@ impl Model {
         let k = (r * self.n1 + a) * self.n1 + b;
         match &self.cost {
             Costs::Dense(m) => m[k],
-            Costs::Lazy { bounds, exact } => {
+            Costs::Lazy {
+                bounds,
+                exact,
+                near,
+            } => {
                 if a == b {
                     return 0.0;
+                }
+                if let (false, Some(nb)) = (near.is_empty() || a == 0 || b == 0, &self.neighbours) {
+                    let row = |t: usize| &nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS];
+                    let base = |t: usize| (r * self.tasks + t) * NEIGHBOURS;
+                    if let Some(j) = row(a - 1).iter().position(|&u| u == b - 1) {
+                        return near[(base(a - 1) + j) * 2];
+                    }
+                    if let Some(j) = row(b - 1).iter().position(|&u| u == a - 1) {
+                        return near[(base(b - 1) + j) * 2 + 1];
+                    }
                 }
                 match exact.get(&(k as u64)) {
                     Some(&v) => v,
                     None => bounds.bound(r, a, b),
                 }
             }
+        }
+    }
+
+    /// Fills the near-cost cache of lazy costs (see [`Costs::Lazy`]).
+    fn cache_near_costs(&mut self) {
+        let (Costs::Lazy { .. }, Some(nb)) = (&self.cost, &self.neighbours) else {
+            return;
+        };
+        let mut cache = vec![f64::NAN; self.robots * self.tasks * NEIGHBOURS * 2];
+        cache
+            .par_chunks_mut(self.tasks * NEIGHBOURS * 2)
+            .enumerate()
+            .for_each(|(r, row)| {
+                for t in 0..self.tasks {
+                    for (j, &u) in nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS]
+                        .iter()
+                        .enumerate()
+                    {
+                        if u != usize::MAX {
+                            let k = (t * NEIGHBOURS + j) * 2;
+                            row[k] = self.c(r, t + 1, u + 1);
+                            row[k + 1] = self.c(r, u + 1, t + 1);
+                        }
+                    }
+                }
+            });
+        if let Costs::Lazy { near, .. } = &mut self.cost {
+            *near = cache;
         }
     }
 
@@ -430,4 +478,70 @@ fn reachable(inst: &Instance, r: usize, forward: bool) -> Vec<bool> {
         }
     }
     seen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Vec2;
+    use crate::wcp::sequencer::{BoundLimits, Bounds, ExactArcs};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Lazy costs (too many arcs for a matrix) with the near-cost cache give the instance's
+    /// travel times: exact ones where known, bounds elsewhere.
+    #[test]
+    fn lazy_costs_are_the_instance_travel_times() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let (robots, tasks) = (5, 2000);
+        assert!(robots * (tasks + 1) * (tasks + 1) > DENSE_MAX_ARCS);
+        let mut pose = || {
+            (
+                Vec2::new(rng.random_range(0.0..100.0), rng.random_range(0.0..80.0)),
+                rng.random_range(-3.0..3.0),
+            )
+        };
+        let homes = (0..robots).map(|_| pose()).collect();
+        let task_poses = (0..tasks).map(|_| pose()).collect();
+        let limits = (0..robots)
+            .map(|r| BoundLimits {
+                max_speed: 1.0 + r as f64 * 0.1,
+                max_accel: 2.0,
+                max_angular_accel: 4.0,
+                max_turn_rate: 1.5,
+            })
+            .collect();
+        let bounds = Arc::new(Bounds::new(limits, homes, task_poses));
+        let mut exact: ExactArcs = vec![Default::default(); robots];
+        let mut arcs = Vec::new();
+        for _ in 0..20_000 {
+            let (r, a, b) = (
+                rng.random_range(0..robots),
+                rng.random_range(0..=tasks),
+                rng.random_range(0..=tasks),
+            );
+            arcs.push((r, a, b));
+            if rng.random_bool(0.3) && a != b {
+                exact[r].insert((a, b), bounds.bound(r, a, b) * 1.5);
+            }
+        }
+        let allowed = vec![vec![true; tasks]; robots];
+        let inst = Instance::bounded(vec![1.0; tasks], allowed, bounds, Arc::new(exact)).unwrap();
+        let model = Model::new(&inst, &[]).unwrap();
+        assert!(matches!(model.cost, Costs::Lazy { ref near, .. } if !near.is_empty()));
+        let nb = model.neighbours.as_ref().unwrap();
+        for t in 0..50 {
+            for u in nb.of(t) {
+                arcs.push((t % robots, t + 1, u + 1));
+                arcs.push((t % robots, u + 1, t + 1));
+            }
+        }
+        for (r, a, b) in arcs {
+            assert_eq!(
+                model.c(r, a, b),
+                inst.travel(r, a, b),
+                "robot {r} {a} -> {b}"
+            );
+        }
+    }
 }
