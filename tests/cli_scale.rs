@@ -1,7 +1,7 @@
 //! The command line of large cells: `generate --kind cell`, `solve --time-limit`,
 //! `--progress`, `--planning` and the exact flags of `--export-graph`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn workcell(args: &[&str]) -> Output {
@@ -18,7 +18,7 @@ fn temp_dir(test: &str) -> PathBuf {
     dir
 }
 
-fn generate(dir: &PathBuf, robots: &str, tasks: &str, fixtures: &str, seed: &str) -> PathBuf {
+fn generate(dir: &Path, robots: &str, tasks: &str, fixtures: &str, seed: &str) -> PathBuf {
     let out = workcell(&[
         "generate",
         "--kind",

@@ -21,6 +21,9 @@ pub enum What<'a> {
     Cells(CellRequest),
 }
 
+/// Writes one file's text when called, or says why it cannot.
+type Maker<'a> = Box<dyn Fn() -> Result<String, String> + 'a>;
+
 fn fail(file: &Path, reason: String) -> InputError {
     InputError {
         file: file.to_path_buf(),
@@ -39,7 +42,7 @@ pub fn run_generate(
     count: u64,
     out: &Path,
 ) -> Result<ExitCode, InputError> {
-    let mut files: Vec<(String, Box<dyn Fn() -> Result<String, String> + '_>)> = Vec::new();
+    let mut files: Vec<(String, Maker)> = Vec::new();
     match what {
         What::Scenes { kinds, robots } => {
             if let (Some(_), [kind]) = (robots, kinds) {

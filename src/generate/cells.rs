@@ -49,11 +49,11 @@ pub const MAX_FIXTURES: usize = 10_000;
 /// What to generate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CellRequest {
-    /// Robots (1 to [`MAX_ROBOTS`]).
+    /// Robots (1 to `MAX_ROBOTS`).
     pub robots: usize,
-    /// Tasks (0 to [`MAX_TASKS`]).
+    /// Tasks (0 to `MAX_TASKS`).
     pub tasks: usize,
-    /// Fixtures (0 to [`MAX_FIXTURES`]).
+    /// Fixtures (0 to `MAX_FIXTURES`).
     pub fixtures: usize,
 }
 

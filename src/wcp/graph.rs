@@ -181,7 +181,7 @@ pub fn plan_reaches(
 /// Refuses a cell with a task that none of its allowed robots can reach from home: exit
 /// status 2, naming the task and each robot's reason. Plans the moves between a home and an
 /// allowed task that it needs and the store has not planned yet: none after
-/// [`plan_reaches`] when the cell can be used.
+/// `plan_reaches` when the cell can be used.
 pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError> {
     // A home from which no move can start is the home's fault, not its tasks'.
     for (r, robot) in cell.robots.iter().enumerate() {

@@ -250,6 +250,9 @@ struct Slot {
     backward: OnceLock<Arc<PlannedMove>>,
 }
 
+/// One lock's share of the store: `(robot, a, b)` to its slot.
+type Shard = HashMap<(usize, usize, usize), Arc<Slot>>;
+
 /// The one store of planned and certified moves of a cell. Thread-safe: any thread may ask
 /// for any move; each is planned and certified once (a thread asking for a move being
 /// planned waits for it), and a move and its reverse share one plan. The planner is
@@ -261,7 +264,7 @@ pub struct MoveStore {
     obstacles: Vec<Body>,
     /// Each obstacle's bounding box.
     boxes: Vec<(Vec2, Vec2)>,
-    shards: Vec<Mutex<HashMap<(usize, usize, usize), Arc<Slot>>>>,
+    shards: Vec<Mutex<Shard>>,
     planned: AtomicUsize,
 }
 
