@@ -9,8 +9,9 @@
 //!
 //! The rounds stop when the plan's moves were all exact already (or their bounds were their
 //! times), when planning them left its makespan as the search saw it, when
-//! [`STALL_ROUNDS`] rounds in a row found no better certified plan, or when the time limit
-//! is out; the best certified plan of all rounds is returned.
+//! [`STALL_ROUNDS`] rounds in a row found no better certified plan (not for the exact
+//! search, which converges), or when the time limit is out; the best certified plan of all
+//! rounds is returned.
 //!
 //! A call starts from the moves of [`Prepared::known`] and learns only from the moves its own
 //! rounds plan (the store plans each move once for everyone): its result never depends on
@@ -94,11 +95,13 @@ pub fn sequence_with(
         }
         // Every move of the plan is known now: its true costs.
         let exact = missing.is_empty() || exact_all;
-        let certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), exact);
+        let mut certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), exact);
         // The makespan the search aimed at is the true one: the moves that changed lie off
-        // the longest route.
+        // the longest route. An optimum on bounds that keeps its makespan once exact is an
+        // optimum: no plan is shorter on the exact times than on their bounds.
         let settled = certified.violations == sol.violations
             && certified.makespan <= sol.makespan * (1.0 + SETTLED_TOL);
+        certified.optimal = sol.optimal && (exact || settled);
         stalled += 1;
         if certified.makespan.is_finite() {
             if best.as_ref().is_none_or(|b| better(&certified, b)) {
@@ -111,7 +114,9 @@ pub fn sequence_with(
             }
         }
         let out_of_time = prepared.deadline.is_some_and(|d| Instant::now() >= d);
-        let stop = exact || settled || out_of_time || stalled >= STALL_ROUNDS;
+        // The exact search converges on its own: every round plans moves it had not.
+        let stalled_out = stalled >= STALL_ROUNDS && !sol.optimal;
+        let stop = exact || settled || out_of_time || stalled_out;
         if stop && best.is_some() {
             break;
         }
