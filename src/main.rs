@@ -11,11 +11,11 @@
 mod cli;
 
 use clap::{Parser, Subcommand};
-use cli::generate::Family;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use workcell::collision::{CheckOptions, Method};
 use workcell::compare::{default_contenders, Contender};
+use workcell::generate::{CellRequest, ConflictKind, Kind};
 
 #[derive(Parser)]
 #[command(
@@ -74,9 +74,25 @@ enum Command {
         max_iterations: u64,
         #[command(flatten)]
         feedback: cli::solve::FeedbackArgs,
-        /// Write the work-cell graph (nodes and each robot's travel times) to this file.
+        /// Write the work-cell graph (nodes and each robot's travel times) to this file, once
+        /// solved: each arc says whether its time is exact (planned and certified) or a
+        /// lower bound.
         #[arg(long)]
         export_graph: Option<PathBuf>,
+        /// Stop searching after this many seconds (whole solve) and keep the best certified
+        /// schedule found so far. Without it the result depends only on the cell and the seed.
+        #[arg(long, value_parser = positive)]
+        time_limit: Option<f64>,
+        /// Print a plain progress line on stderr every second (stage, best makespan, elapsed
+        /// time) instead of the progress bar.
+        #[arg(long)]
+        progress: bool,
+        /// Which moves are planned and certified before sequencing: `all` (every move of every
+        /// robot), `lazy` (those between homes and tasks; the sequencer works on lower bounds
+        /// of the others and plans those its plans use) or `auto` (`all` for cells of at most
+        /// 100,000 moves, else `lazy`).
+        #[arg(long, default_value = "auto", value_parser = ["auto", "lazy", "all"])]
+        planning: String,
     },
     /// Time and check given sequences (the `sequences` object of a solve result).
     ///
@@ -109,24 +125,34 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<Contender>>,
     },
-    /// Write deterministic random scenes or conflict cells (same arguments, same bytes) as
-    /// `OUT/<kind>-<seed>-<k>.json` (cells: `...-cell.json`) for k in 0..count.
+    /// Write deterministic random scenes or cells (same arguments, same bytes) as
+    /// `OUT/<kind>-<seed>-<k>.json` for k in 0..count; conflict cells as
+    /// `OUT/<kind>-<seed>-<k>-cell.json`, cells for `solve` (`--kind cell`) as
+    /// `OUT/cell-<R>r-<N>t-<F>f-<seed>-<k>-cell.json`.
     ///
-    /// Exit status: 0 written, 2 the folder or a file cannot be written.
+    /// Exit status: 0 written, 2 an impossible request, or the folder or a file cannot be
+    /// written.
     Generate {
-        /// Family of scenes or cells (see README: "`workcell generate`"); `all` for every
-        /// family of scenes, `conflict` for every family of conflict cells.
-        #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Family::names()))]
+        /// Family of scenes or cells (see README: "`workcell generate`"): `all` for every
+        /// family of scenes, `conflict` for every family of conflict cells, `cell` for a cell
+        /// at the size of a line.
+        #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(cli::generate::kind_names()))]
         kind: String,
         /// Seed: the same seed gives the same scenes.
         #[arg(long)]
         seed: u64,
-        /// Number of robots (`hall` only; default 10).
+        /// Number of robots (`hall`: default 10; `cell`: required, at most 1,000).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000))]
         robots: Option<u64>,
-        /// Number of scenes.
-        #[arg(long, default_value_t = 10)]
-        count: u64,
+        /// Number of tasks of a cell (`cell` only, required).
+        #[arg(long)]
+        tasks: Option<u64>,
+        /// Number of fixtures of a cell (`cell` only; default 3 per 50 tasks).
+        #[arg(long)]
+        fixtures: Option<u64>,
+        /// Number of scenes or cells (default 10 scenes, 1 cell).
+        #[arg(long)]
+        count: Option<u64>,
         /// Output folder, created if missing.
         #[arg(long)]
         out: PathBuf,
@@ -138,6 +164,59 @@ fn positive(s: &str) -> Result<f64, String> {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("expected a positive number, got `{s}`")),
     }
+}
+
+/// `workcell generate`: scenes of one kind or all, or cells.
+fn generate(
+    kind: &str,
+    seed: u64,
+    robots: Option<u64>,
+    tasks: Option<u64>,
+    fixtures: Option<u64>,
+    count: Option<u64>,
+    out: &std::path::Path,
+) -> Result<ExitCode, workcell::cell::InputError> {
+    use cli::generate::{run_generate, What};
+    let refuse = |reason: &str| workcell::cell::InputError {
+        file: out.to_path_buf(),
+        body: None,
+        field: String::new(),
+        reason: reason.to_owned(),
+    };
+    if kind == "cell" {
+        let (Some(robots), Some(tasks)) = (robots, tasks) else {
+            return Err(refuse("--kind cell needs --robots and --tasks"));
+        };
+        let tasks = tasks as usize;
+        let req = CellRequest {
+            robots: robots as usize,
+            tasks,
+            fixtures: fixtures.map_or(CellRequest::default_fixtures(tasks), |f| f as usize),
+        };
+        req.check().map_err(|e| refuse(&e))?;
+        return run_generate(&What::Cells(req), seed, count.unwrap_or(1), out);
+    }
+    if tasks.is_some() || fixtures.is_some() {
+        return Err(refuse("--tasks and --fixtures apply only to --kind cell"));
+    }
+    let conflicts = match kind {
+        "conflict" => Some(ConflictKind::ALL.to_vec()),
+        other => ConflictKind::from_name(other).map(|k| vec![k]),
+    };
+    if let Some(kinds) = conflicts {
+        if robots.is_some() {
+            return Err(refuse(&format!(
+                "--robots applies only to --kind hall and cell, not to {kind}"
+            )));
+        }
+        return run_generate(&What::Conflicts(&kinds), seed, count.unwrap_or(10), out);
+    }
+    let kinds = Kind::from_name(kind);
+    let what = What::Scenes {
+        kinds: kinds.as_ref().map_or(&Kind::ALL[..], std::slice::from_ref),
+        robots: robots.map(|r| r as usize),
+    };
+    run_generate(&what, seed, count.unwrap_or(10), out)
 }
 
 fn main() -> ExitCode {
@@ -167,13 +246,26 @@ fn main() -> ExitCode {
             max_iterations,
             feedback,
             export_graph,
+            time_limit,
+            progress,
+            planning,
         } => cli::solve::run_solve(
             &cell,
             &out,
-            seed,
-            max_iterations as usize,
-            &feedback,
-            export_graph.as_deref(),
+            &cli::solve::SolveArgs {
+                seed,
+                max_iterations: max_iterations as usize,
+                feedback: &feedback,
+                export_graph: export_graph.as_deref(),
+                // Beyond what a Duration holds, no limit at all.
+                time_limit: time_limit.and_then(|t| std::time::Duration::try_from_secs_f64(t).ok()),
+                progress,
+                planning: match planning.as_str() {
+                    "all" => workcell::wcp::Planning::All,
+                    "lazy" => workcell::wcp::Planning::Lazy,
+                    _ => workcell::wcp::Planning::Auto,
+                },
+            },
         ),
         Command::Evaluate {
             cell,
@@ -184,15 +276,11 @@ fn main() -> ExitCode {
             kind,
             seed,
             robots,
+            tasks,
+            fixtures,
             count,
             out,
-        } => cli::generate::run_generate(
-            &Family::parse(&kind).expect("clap accepts only the names of families"),
-            seed,
-            robots.map(|r| r as usize),
-            count,
-            &out,
-        ),
+        } => generate(&kind, seed, robots, tasks, fixtures, count, &out),
         Command::Compare {
             inputs,
             svg,

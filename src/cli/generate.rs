@@ -1,103 +1,124 @@
-//! `workcell generate`: write deterministic random scenes or cells of one kind.
+//! `workcell generate`: write deterministic random scenes, conflict cells, or cells.
 
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 use workcell::cell::{scene_document, InputError};
 use workcell::generate::{
-    conflict_file_name, generate_conflict_cell, generate_scene, scene_file_name, ConflictKind, Kind,
+    cell_file_name, conflict_file_name, generate_cell, generate_conflict_cell, generate_scene,
+    scene_file_name, CellRequest, ConflictKind, Kind,
 };
 
-/// What `--kind` names: a family of scenes or of cells.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Family {
-    /// Scenes for `check`.
-    Scene(Kind),
-    /// Conflict cells for `solve`.
-    Conflict(ConflictKind),
+/// Every accepted `--kind` value: the scene families and `all`, the conflict families and
+/// `conflict`, and `cell`.
+pub fn kind_names() -> Vec<&'static str> {
+    let scenes = Kind::ALL.map(Kind::name).into_iter().chain(["all"]);
+    let conflicts = ConflictKind::ALL
+        .map(ConflictKind::name)
+        .into_iter()
+        .chain(["conflict"]);
+    scenes.chain(conflicts).chain(["cell"]).collect()
 }
 
-impl Family {
-    /// The families a `--kind` value names: one, `all` (every scene family) or `conflict`
-    /// (every conflict family).
-    pub fn parse(name: &str) -> Option<Vec<Family>> {
-        match name {
-            "all" => Some(Kind::ALL.map(Family::Scene).to_vec()),
-            "conflict" => Some(ConflictKind::ALL.map(Family::Conflict).to_vec()),
-            _ => Kind::from_name(name)
-                .map(Family::Scene)
-                .or(ConflictKind::from_name(name).map(Family::Conflict))
-                .map(|f| vec![f]),
-        }
-    }
-
-    /// Every accepted `--kind` value.
-    pub fn names() -> Vec<&'static str> {
-        let scenes = Kind::ALL.map(Kind::name).into_iter().chain(["all"]);
-        let cells = ConflictKind::ALL.map(ConflictKind::name);
-        scenes.chain(cells).chain(["conflict"]).collect()
-    }
+/// What `generate` writes.
+pub enum What<'a> {
+    /// Scenes of these kinds; `robots` for the halls.
+    Scenes {
+        /// The kinds.
+        kinds: &'a [Kind],
+        /// Robots of a hall.
+        robots: Option<usize>,
+    },
+    /// Conflict cells of these families, for the feedback loop.
+    Conflicts(&'a [ConflictKind]),
+    /// Cells for `solve`.
+    Cells(CellRequest),
 }
 
-/// Writes `DIR/<kind>-<seed>-<k>.json` (scenes) or `DIR/<kind>-<seed>-<k>-cell.json`
-/// (cells) for each family and k in 0..count, creating `out` if missing, and prints one line
-/// per file. Same arguments, same bytes.
-pub fn run_generate(
-    families: &[Family],
-    seed: u64,
-    robots: Option<usize>,
-    count: u64,
-    out: &Path,
-) -> Result<ExitCode, InputError> {
-    let fail = |file: &Path, reason: String| InputError {
+/// Writes one file's text when called, or says why it cannot.
+type Maker<'a> = Box<dyn Fn() -> Result<String, String> + 'a>;
+
+fn fail(file: &Path, reason: String) -> InputError {
+    InputError {
         file: file.to_path_buf(),
         body: None,
         field: String::new(),
         reason,
-    };
-    if let (Some(_), [family]) = (robots, families) {
-        if *family != Family::Scene(Kind::Hall) {
-            return Err(fail(
-                out,
-                format!(
-                    "--robots applies only to --kind hall, not to {}",
-                    family.name()
-                ),
-            ));
+    }
+}
+
+/// Writes `DIR/<kind>-<seed>-<k>.json` for each kind and k in 0..count (conflict cells
+/// `DIR/<kind>-<seed>-<k>-cell.json`, or the cells of [`cell_file_name`]), creating `out` if
+/// missing, and prints one line per file. Same arguments, same bytes.
+pub fn run_generate(
+    what: &What,
+    seed: u64,
+    count: u64,
+    out: &Path,
+) -> Result<ExitCode, InputError> {
+    let mut files: Vec<(String, Maker)> = Vec::new();
+    match what {
+        What::Scenes { kinds, robots } => {
+            if let (Some(_), [kind]) = (robots, kinds) {
+                if *kind != Kind::Hall {
+                    return Err(fail(
+                        out,
+                        format!(
+                            "--robots applies only to --kind hall and cell, not to {}",
+                            kind.name()
+                        ),
+                    ));
+                }
+            }
+            for &kind in kinds.iter() {
+                for k in 0..count {
+                    let robots = robots.unwrap_or(10);
+                    files.push((
+                        scene_file_name(kind, seed, k),
+                        Box::new(move || {
+                            let scene = generate_scene(kind, seed, k, robots);
+                            Ok(serde_json::to_string_pretty(&scene_document(&scene))
+                                .expect("a scene serialises"))
+                        }),
+                    ));
+                }
+            }
+        }
+        What::Conflicts(kinds) => {
+            for &kind in kinds.iter() {
+                for k in 0..count {
+                    files.push((
+                        conflict_file_name(kind, seed, k),
+                        Box::new(move || {
+                            let doc = generate_conflict_cell(kind, seed, k);
+                            Ok(serde_json::to_string_pretty(&doc).expect("a cell serialises"))
+                        }),
+                    ));
+                }
+            }
+        }
+        What::Cells(req) => {
+            for k in 0..count {
+                files.push((
+                    cell_file_name(req, seed, k),
+                    Box::new(move || {
+                        generate_cell(req, seed, k)
+                            .map(|doc| serde_json::to_string_pretty(&doc).expect("serialises"))
+                    }),
+                ));
+            }
         }
     }
     std::fs::create_dir_all(out)
         .map_err(|e| fail(out, format!("cannot create the output folder: {e}")))?;
     let mut stdout = std::io::stdout().lock();
-    for (&family, k) in families
-        .iter()
-        .flat_map(|family| (0..count).map(move |k| (family, k)))
-    {
-        let (doc, name) = match family {
-            Family::Scene(kind) => (
-                scene_document(&generate_scene(kind, seed, k, robots.unwrap_or(10))),
-                scene_file_name(kind, seed, k),
-            ),
-            Family::Conflict(kind) => (
-                generate_conflict_cell(kind, seed, k),
-                conflict_file_name(kind, seed, k),
-            ),
-        };
-        let text = serde_json::to_string_pretty(&doc).expect("a document serialises") + "\n";
+    for (name, make) in files {
         let file = out.join(name);
+        let text = make().map_err(|reason| fail(&file, reason))? + "\n";
         std::fs::write(&file, text)
             .map_err(|e| fail(&file, format!("cannot write the file: {e}")))?;
         // A closed pipe (`| head`) is the reader's choice, not an error of ours.
         let _ = writeln!(stdout, "{}", file.display());
     }
     Ok(ExitCode::SUCCESS)
-}
-
-impl Family {
-    fn name(self) -> &'static str {
-        match self {
-            Family::Scene(k) => k.name(),
-            Family::Conflict(k) => k.name(),
-        }
-    }
 }

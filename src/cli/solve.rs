@@ -4,13 +4,16 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 use workcell::cell::{load_cell, load_sequences, scene_document, Cell, InputError};
 use workcell::wcp::remedy_json::legs_json;
 use workcell::wcp::report::{
     collision_json, rounds_json, schedule_json, sequences_json, summary, waits_json, ResultJson,
 };
 use workcell::wcp::{
-    self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SolveOptions,
+    self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SolveOptions, WcpGraph,
 };
 
 /// Output options shared by `solve` and `evaluate`.
@@ -69,78 +72,202 @@ impl FeedbackArgs {
     }
 }
 
-/// A progress bar on stderr, shown only on a terminal and without `--json`.
-struct Bar(ProgressBar);
+/// How often `--progress` prints a line.
+const PROGRESS_PERIOD: Duration = Duration::from_secs(1);
+
+/// A progress bar on stderr, shown only on a terminal and without `--json` or `--progress`;
+/// with `--progress`, a plain line every [`PROGRESS_PERIOD`] instead.
+struct Bar {
+    bar: ProgressBar,
+    lines: Option<Arc<Lines>>,
+    printer: Option<std::thread::JoinHandle<()>>,
+}
+
+/// What the `--progress` lines say, shared with the thread that prints them.
+struct Lines {
+    start: Instant,
+    stage: Mutex<String>,
+    planned: AtomicUsize,
+    to_plan: AtomicUsize,
+    /// Best makespan heard, as f64 bits (infinity: none yet).
+    best: AtomicU64,
+    done: AtomicBool,
+}
+
+impl Lines {
+    fn line(&self) -> String {
+        let stage = self.stage.lock().expect("no panic while held").clone();
+        let stage = if stage == "planning" {
+            let (k, n) = (
+                self.planned.load(Ordering::Relaxed),
+                self.to_plan.load(Ordering::Relaxed),
+            );
+            format!("planning moves {k}/{n}")
+        } else {
+            stage
+        };
+        let best = f64::from_bits(self.best.load(Ordering::Relaxed));
+        let best = if best.is_finite() {
+            format!("{best:.3}")
+        } else {
+            "-".to_owned()
+        };
+        format!(
+            "progress: {:.1} s, {stage}, best makespan {best}",
+            self.start.elapsed().as_secs_f64()
+        )
+    }
+}
 
 impl Bar {
-    fn new(json: bool) -> Bar {
+    fn new(json: bool, lines: bool) -> Bar {
         let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
-        if json || !std::io::stderr().is_terminal() {
+        if json || lines || !std::io::stderr().is_terminal() {
             bar.set_draw_target(ProgressDrawTarget::hidden());
         }
-        Bar(bar)
+        let lines = lines.then(|| {
+            Arc::new(Lines {
+                start: Instant::now(),
+                stage: Mutex::new("reading".to_owned()),
+                planned: AtomicUsize::new(0),
+                to_plan: AtomicUsize::new(0),
+                best: AtomicU64::new(f64::INFINITY.to_bits()),
+                done: AtomicBool::new(false),
+            })
+        });
+        let printer = lines.clone().map(|lines| {
+            std::thread::spawn(move || {
+                let mut next = lines.start + PROGRESS_PERIOD;
+                while !lines.done.load(Ordering::Relaxed) {
+                    // Short naps, so that the end of the solve is not held up by a second.
+                    std::thread::sleep(Duration::from_millis(20));
+                    if Instant::now() >= next {
+                        eprintln!("{}", lines.line());
+                        next += PROGRESS_PERIOD;
+                    }
+                }
+            })
+        });
+        Bar {
+            bar,
+            lines,
+            printer,
+        }
+    }
+
+    fn stage(&self, stage: String) {
+        if let Some(lines) = &self.lines {
+            *lines.stage.lock().expect("no panic while held") = stage;
+        }
+    }
+
+    /// Clears the bar, stops the lines (a last one says where the solve ended).
+    fn finish(&mut self) {
+        self.bar.finish_and_clear();
+        if let (Some(lines), Some(printer)) = (&self.lines, self.printer.take()) {
+            lines.done.store(true, Ordering::Relaxed);
+            let _ = printer.join();
+            eprintln!("{}", lines.line());
+        }
     }
 }
 
 impl Progress for Bar {
     fn planning(&self, total: usize) {
-        self.0.set_style(
+        self.bar.set_style(
             ProgressStyle::with_template("planning moves {bar:40} {pos}/{len} {elapsed}")
                 .expect("a valid template"),
         );
-        self.0.set_length(total as u64);
+        self.bar.set_length(total as u64);
+        if let Some(lines) = &self.lines {
+            lines.to_plan.store(total, Ordering::Relaxed);
+        }
+        self.stage("planning".to_owned());
     }
 
     fn move_planned(&self) {
-        self.0.inc(1);
+        self.bar.inc(1);
+        if let Some(lines) = &self.lines {
+            lines.planned.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    fn sequencing(&self, round: usize) {
+        self.bar.set_style(
+            ProgressStyle::with_template("{spinner} {msg} {elapsed}").expect("a valid template"),
+        );
+        self.bar.set_message(format!("sequencing, round {round}"));
+        self.bar.tick();
+        self.stage(format!("sequencing round {round}"));
+    }
+
+    fn best(&self, makespan: f64) {
+        if let Some(lines) = &self.lines {
+            // Smallest wins; f64 bits of positive numbers order as the numbers.
+            lines.best.fetch_min(makespan.to_bits(), Ordering::Relaxed);
+        }
     }
 
     fn iteration(&self, k: usize, makespan: f64, collision: Option<&Collision>) {
-        if k == 1 {
-            self.0.set_style(
-                ProgressStyle::with_template("{spinner} round {msg} {elapsed}")
-                    .expect("a valid template"),
-            );
-        }
+        self.bar.set_style(
+            ProgressStyle::with_template("{spinner} round {msg} {elapsed}")
+                .expect("a valid template"),
+        );
         let verdict = if collision.is_some() {
             "collides, re-planning"
         } else {
             "collision-free"
         };
-        self.0
+        self.bar
             .set_message(format!("{k}: makespan {makespan:.3}, {verdict}"));
-        self.0.tick();
+        self.bar.tick();
+        self.stage(format!(
+            "checked round {k} (makespan {makespan:.3}, {verdict})"
+        ));
     }
 }
 
+/// Settings of `workcell solve` beyond the outputs.
+pub struct SolveArgs<'a> {
+    /// Seed of the sequencer.
+    pub seed: u64,
+    /// Rounds of the feedback loop.
+    pub max_iterations: usize,
+    /// How collisions are fed back.
+    pub feedback: &'a FeedbackArgs,
+    /// `--export-graph`.
+    pub export_graph: Option<&'a Path>,
+    /// `--time-limit`.
+    pub time_limit: Option<Duration>,
+    /// `--progress`.
+    pub progress: bool,
+    /// `--planning`.
+    pub planning: wcp::Planning,
+}
+
 /// Solves the cell; exit status 0 collision-free, 1 none found.
-pub fn run_solve(
-    path: &Path,
-    out: &Outputs,
-    seed: u64,
-    max_iterations: usize,
-    feedback: &FeedbackArgs,
-    export_graph: Option<&Path>,
-) -> Result<ExitCode, InputError> {
-    let cell = load(path)?;
+pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCode, InputError> {
+    let mut bar = Bar::new(out.json, args.progress);
+    let cell = load(path).inspect_err(|_| bar.finish())?;
     let mut opts = SolveOptions {
-        max_iterations,
+        max_iterations: args.max_iterations,
+        time_limit: args.time_limit,
+        planning: args.planning,
         ..SolveOptions::default()
     };
-    feedback.apply(&mut opts);
-    opts.sequencer.seed = seed;
-    let bar = Bar::new(out.json);
+    args.feedback.apply(&mut opts);
+    opts.sequencer.seed = args.seed;
     // An error leaves no half-drawn bar above its message.
-    let prepared = wcp::prepare(&cell, &opts, &bar).inspect_err(|_| bar.0.finish_and_clear())?;
+    let prepared = wcp::prepare(&cell, &opts, &bar).inspect_err(|_| bar.finish())?;
+    let solved = wcp::solve(&cell, &prepared, &opts, &bar).inspect_err(|_| bar.finish())?;
+    bar.finish();
     let mut written = Ok(());
-    if let Some(file) = export_graph {
-        let doc = serde_json::to_string_pretty(&prepared.graph.export(&cell))
-            .expect("a graph serialises");
+    if let Some(file) = args.export_graph {
+        // After the solve: every move it planned is exact there.
+        let graph = WcpGraph::new(&cell, &prepared.moves, &prepared.bounds);
+        let doc = serde_json::to_string_pretty(&graph.export(&cell)).expect("a graph serialises");
         written = written.and(write(file, &doc));
     }
-    let solved =
-        wcp::solve(&cell, &prepared, &opts, &bar).inspect_err(|_| bar.0.finish_and_clear())?;
-    bar.0.finish_and_clear();
     let collisions: Vec<&Collision> = solved
         .iterations
         .iter()

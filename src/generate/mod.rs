@@ -1,11 +1,14 @@
-//! Deterministic generators: scenes for the checker ([`generate_scene`]) and cells whose
-//! robots get in each other's way, for the feedback loop ([`generate_conflict_cell`]). The
-//! same arguments always give the same document (a ChaCha8 stream per document, seeded from
-//! kind, seed and index; no clock, no hashing).
+//! Deterministic generators: scenes for the checker ([`generate_scene`]), cells for the
+//! solver at the size of a real line ([`generate_cell`]) and cells whose robots get in each
+//! other's way, for the feedback loop ([`generate_conflict_cell`]). The same arguments always
+//! give the same document (a ChaCha8 stream per document, seeded from kind, seed and index;
+//! no clock, no hashing).
 
+mod cells;
 mod conflict;
 mod scenes;
 
+pub use cells::{cell_file_name, generate_cell, CellRequest, TASK_CLEARANCE};
 pub use conflict::{conflict_file_name, generate_conflict_cell, ConflictKind};
 pub use scenes::{generate_scene, scene_file_name, Kind};
 

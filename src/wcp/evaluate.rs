@@ -2,7 +2,8 @@
 
 use super::feedback::{SolveOptions, StageTimes};
 use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
-use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
+use super::moves::MoveStore;
+use super::schedule::{BuildError, Collision, Delay, Schedule};
 use crate::cell::{Cell, InputError, PieceSpec, Sequences};
 use crate::collision::{check, CheckReport};
 use crate::geometry::Vec2;
@@ -45,7 +46,7 @@ pub fn evaluate(
 ) -> Result<Evaluated, InputError> {
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    let cache = MoveCache::new(cell, opts.planner);
+    let cache = MoveStore::new(cell, &opts.planner);
     let routes = &sequences.routes;
     let delays: Vec<Delay> = sequences
         .waits

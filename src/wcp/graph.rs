@@ -1,7 +1,8 @@
-//! The work-cell graph: homes and tasks as nodes, each robot's certified travel times as arcs.
+//! The work-cell graph: homes and tasks as nodes, each robot's travel times as arcs: the
+//! certified time of every move planned so far, the admissible lower bound of the others.
 
-use super::moves::{MoveFailure, MoveTable};
-use super::sequencer::{Instance, SequencerError};
+use super::moves::{robot_nodes, MoveFailure, MoveStore};
+use super::sequencer::Bounds;
 use crate::cell::{Cell, InputError};
 use petgraph::graph::{DiGraph, NodeIndex};
 use petgraph::visit::EdgeRef;
@@ -21,8 +22,11 @@ pub enum NodeKind {
 pub struct TravelArc {
     /// The robot (index into the cell's robots).
     pub robot: usize,
-    /// Its fastest certified obstacle-free move, task durations excluded.
+    /// Its fastest certified obstacle-free move, task durations excluded; a lower bound of
+    /// it when `exact` is false.
     pub travel_time: f64,
+    /// The move was planned and certified; otherwise `travel_time` is its lower bound.
+    pub exact: bool,
 }
 
 /// The directed graph of the Work-Cell Problem (petgraph), one node per home and per task.
@@ -33,8 +37,10 @@ pub struct WcpGraph {
 }
 
 impl WcpGraph {
-    /// The graph of the moves in `table`: an arc for every finite travel time.
-    pub fn new(cell: &Cell, table: &MoveTable) -> Self {
+    /// An arc for every robot and ordered pair of the nodes it may visit: the certified time
+    /// of the moves `store` planned, the lower bound of `bounds` for the others; no arc for a
+    /// move known to fail. Robots × nodes² arcs: meant for cells of a few hundred tasks.
+    pub fn new(cell: &Cell, store: &MoveStore, bounds: &Bounds) -> Self {
         let (robots, tasks) = (cell.robots.len(), cell.tasks.len());
         let mut graph = DiGraph::with_capacity(robots + tasks, 0);
         for r in 0..robots {
@@ -49,51 +55,24 @@ impl WcpGraph {
             n => NodeIndex::new(robots + n - 1),
         };
         for r in 0..robots {
-            for a in 0..=tasks {
-                for b in 0..=tasks {
-                    let travel_time = table.travel(r, a, b);
-                    if a != b && travel_time.is_finite() {
-                        graph.add_edge(
-                            index(r, a),
-                            index(r, b),
-                            TravelArc {
-                                robot: r,
-                                travel_time,
-                            },
-                        );
-                    }
+            let nodes = robot_nodes(cell, r);
+            for &a in &nodes {
+                for &b in nodes.iter().filter(|&&b| b != a) {
+                    let (travel_time, exact) = match store.known(r, a, b) {
+                        Some(Ok(time)) => (time, true),
+                        Some(Err(_)) => continue,
+                        None => (bounds.bound(r, a, b), false),
+                    };
+                    let arc = TravelArc {
+                        robot: r,
+                        travel_time,
+                        exact,
+                    };
+                    graph.add_edge(index(r, a), index(r, b), arc);
                 }
             }
         }
         WcpGraph { graph }
-    }
-
-    /// The sequencer's instance: durations, permissions and each robot's travel matrix, read
-    /// back from the arcs.
-    pub fn instance(&self, cell: &Cell) -> Result<Instance, SequencerError> {
-        let (robots, tasks) = (cell.robots.len(), cell.tasks.len());
-        let n = tasks + 1;
-        let local = |node: NodeIndex, r: usize| match self.graph[node] {
-            NodeKind::Home(h) => (h == r).then_some(0),
-            NodeKind::Task(t) => Some(t + 1),
-        };
-        let mut travel = vec![vec![f64::INFINITY; n * n]; robots];
-        for m in &mut travel {
-            for k in 0..n {
-                m[k * n + k] = 0.0;
-            }
-        }
-        for e in self.graph.edge_references() {
-            let r = e.weight().robot;
-            if let (Some(a), Some(b)) = (local(e.source(), r), local(e.target(), r)) {
-                travel[r][a * n + b] = e.weight().travel_time;
-            }
-        }
-        let allowed = (0..robots)
-            .map(|r| cell.tasks.iter().map(|t| t.robots.contains(&r)).collect())
-            .collect();
-        let duration = cell.tasks.iter().map(|t| t.duration).collect();
-        Instance::new(duration, allowed, travel)
     }
 
     /// The contract's `--export-graph` document.
@@ -121,6 +100,7 @@ impl WcpGraph {
                 from: name(self.graph[e.source()]),
                 to: name(self.graph[e.target()]),
                 travel_time: e.weight().travel_time,
+                exact: e.weight().exact,
             })
             .collect();
         GraphFile { nodes, arcs }
@@ -154,27 +134,81 @@ pub struct GraphFileArc {
     pub from: String,
     /// Target node's name.
     pub to: String,
-    /// The robot's fastest certified obstacle-free move, task durations excluded.
+    /// The robot's fastest certified obstacle-free move, task durations excluded; its lower
+    /// bound when `exact` is false.
     pub travel_time: f64,
+    /// Whether the move was planned and certified (`travel_time` is then its time) or not
+    /// (`travel_time` is the time of the straight obstacle-free move, a lower bound).
+    pub exact: bool,
+}
+
+/// Plans, for every task, the moves from the homes of its allowed robots, nearest robot
+/// first by `bounds`, until one succeeds (in parallel over the tasks). Returns the moves
+/// planned, as `(robot, 0, node)`.
+pub fn plan_reaches(
+    cell: &Cell,
+    store: &MoveStore,
+    bounds: &Bounds,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<(usize, usize, usize)> {
+    use rayon::prelude::*;
+    let per_task: Vec<Vec<(usize, usize, usize)>> = (0..cell.tasks.len())
+        .into_par_iter()
+        .map(|t| {
+            let node = t + 1;
+            let mut robots = cell.tasks[t].robots.clone();
+            robots.sort_by(|&a, &b| {
+                bounds
+                    .bound(a, 0, node)
+                    .total_cmp(&bounds.bound(b, 0, node))
+                    .then(a.cmp(&b))
+            });
+            let mut planned = Vec::new();
+            for r in robots {
+                planned.push((r, 0, node));
+                let ok = store.duration(r, 0, node).is_ok();
+                progress();
+                if ok {
+                    break;
+                }
+            }
+            planned
+        })
+        .collect();
+    per_task.into_iter().flatten().collect()
 }
 
 /// Refuses a cell with a task that none of its allowed robots can reach from home: exit
-/// status 2, naming the task and each robot's reason.
-pub fn check_reachable(cell: &Cell, table: &MoveTable) -> Result<(), InputError> {
+/// status 2, naming the task and each robot's reason. Plans the moves between a home and an
+/// allowed task that it needs and the store has not planned yet: none after
+/// `plan_reaches` when the cell can be used.
+pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError> {
     // A home from which no move can start is the home's fault, not its tasks'.
     for (r, robot) in cell.robots.iter().enumerate() {
-        let moves = cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
-        let blocked: Vec<&str> = table.failures[r]
+        let nodes = robot_nodes(cell, r);
+        let home_blocked = |why: &Result<f64, MoveFailure>| {
+            matches!(why, Err(MoveFailure::Blocked { end: "start", .. }))
+        };
+        // Only a robot whose known home moves all start blocked can be at fault: then every
+        // one of them is planned to find out.
+        let known: Vec<_> = nodes[1..]
             .iter()
-            .filter_map(|(a, _, why)| match why {
-                MoveFailure::Blocked {
-                    end: "start",
-                    obstacle,
-                } if *a == 0 => Some(obstacle.as_str()),
-                _ => None,
-            })
+            .filter_map(|&n| store.known(r, 0, n))
             .collect();
-        if moves > 0 && blocked.len() == moves {
+        if known.is_empty() || !known.iter().all(home_blocked) {
+            continue;
+        }
+        let mut blocked = Vec::new();
+        for &node in &nodes[1..] {
+            if let Err(MoveFailure::Blocked {
+                end: "start",
+                obstacle,
+            }) = store.duration(r, 0, node)
+            {
+                blocked.push(obstacle);
+            }
+        }
+        if blocked.len() == nodes.len() - 1 {
             let reason = format!(
                 "no move can start from this home: the robot is too close to obstacle \"{}\" \
                  for the planner's clearance (delta + 2%, swept over each move's rotation)",
@@ -185,10 +219,13 @@ pub fn check_reachable(cell: &Cell, table: &MoveTable) -> Result<(), InputError>
     }
     for (t, task) in cell.tasks.iter().enumerate() {
         let node = t + 1;
-        if task
-            .robots
-            .iter()
-            .any(|&r| table.travel(r, 0, node).is_finite())
+        // A move already known to succeed settles it without planning any other.
+        let known_ok = |r: &usize| matches!(store.known(*r, 0, node), Some(Ok(_)));
+        if task.robots.iter().any(known_ok)
+            || task
+                .robots
+                .iter()
+                .any(|&r| store.duration(r, 0, node).is_ok())
         {
             continue;
         }
@@ -196,10 +233,10 @@ pub fn check_reachable(cell: &Cell, table: &MoveTable) -> Result<(), InputError>
             .robots
             .iter()
             .map(|&r| {
-                let why = table.failures[r]
-                    .iter()
-                    .find(|(a, b, _)| (*a, *b) == (0, node))
-                    .map_or_else(|| "no move".to_owned(), |(_, _, why)| why.to_string());
+                let why = store
+                    .duration(r, 0, node)
+                    .err()
+                    .map_or_else(|| "no move".to_owned(), |why| why.to_string());
                 format!("{}: {why}", cell.robots[r].name)
             })
             .collect();

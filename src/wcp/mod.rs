@@ -1,9 +1,12 @@
 //! The Work-Cell Problem: from a cell to a collision-free schedule with a small makespan.
 //!
-//! 1. [`MoveTable`]: every robot's fastest move between every two of its nodes (home,
-//!    allowed tasks), planned by [`crate::planning`] and certified by the checker.
-//! 2. [`WcpGraph`]: the petgraph graph of those travel times.
-//! 3. [`sequencer`]: assigns and orders the tasks to minimise the makespan.
+//! 1. [`MoveStore`]: every robot's fastest move between two of its nodes (home, allowed
+//!    tasks), planned by [`crate::planning`] and certified by the checker when first needed,
+//!    then kept; [`bounds`] bounds every move from below without planning it.
+//! 2. [`sequence`]: the [`sequencer`] assigns and orders the tasks to minimise the makespan,
+//!    on the bounds and the moves known so far; the moves of its plan are then planned, and
+//!    it runs again until every move of its plan is exact.
+//! 3. [`WcpGraph`]: the petgraph graph of the travel times, exact or bounds, for export.
 //! 4. [`solve`]: the loop. Each round times the sequences into a [`Schedule`], checks every
 //!    pair with [`crate::collision::check`] and feeds the first collision back: either the
 //!    sequencer re-plans with the two colliding steps forbidden together, or one robot waits
@@ -19,19 +22,22 @@ mod picture;
 pub mod remedy_json;
 pub mod report;
 mod schedule;
+mod sequence;
 pub mod sequencer;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
-    describe, prepare, sequencer_error, solve, Feedback, Iteration, Prepared, Progress, Remedies,
-    Remedy, SearchOptions, SolveOptions, Solved, StageTimes,
+    describe, prepare, sequencer_error, solve, Feedback, Iteration, Planning, Prepared, Progress,
+    Remedies, Remedy, SearchOptions, SolveOptions, Solved, StageTimes, AUTO_ALL_MAX_MOVES,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,
 };
-pub use moves::{certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveTable};
+pub use moves::{
+    bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore,
+};
 pub use picture::picture;
 pub use schedule::{
-    route_nodes, Activity, BuildError, Collision, Delay, MoveCache, RobotSchedule, Schedule,
-    Segment,
+    route_nodes, Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,
 };
+pub use sequence::{sequence, sequence_with};

@@ -1,15 +1,23 @@
-//! Every move a robot may make, planned and then certified obstacle-free by the checker.
+//! Every move a robot may make, planned and then certified obstacle-free by the checker, on
+//! demand: [`MoveStore`] plans and certifies each move once, whoever asks first, and keeps it
+//! for every later use (the sequencer, the schedules, the feedback loop's remedies).
+//! [`bounds`] gives each move's admissible lower bound without planning it.
 //!
 //! Node indices are those of the sequencer: for each robot, 0 is its home and `1 + t` is
 //! task `t`. A move and its reverse visit the same poses (the motion model is symmetric in
 //! time), so one plan and one certificate serve both directions.
 
+use super::sequencer::{BoundLimits, Bounds};
 use crate::cell::{Cell, CellRobot};
 use crate::collision::{check, Body, CheckOptions, Scene};
+use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::{Motion, Pose, Sample, Trajectory};
 use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use rayon::prelude::*;
+use std::collections::HashMap;
 use std::fmt;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// Why a robot has no move between two nodes.
 #[derive(Clone, Debug, PartialEq)]
@@ -107,13 +115,39 @@ pub fn certified_move(
     planner: &PlannerOptions,
     obstacles: &[Body],
 ) -> Result<PlannedMove, MoveFailure> {
-    let robot = &cell.robots[r];
     let shapes: Vec<_> = cell.obstacles.iter().map(|o| o.shape.clone()).collect();
+    plan_and_certify(cell, r, from, to, planner, &shapes, obstacles)
+}
+
+fn plan_and_certify(
+    cell: &Cell,
+    r: usize,
+    from: usize,
+    to: usize,
+    planner: &PlannerOptions,
+    shapes: &[ConvexPolygon],
+    obstacles: &[Body],
+) -> Result<PlannedMove, MoveFailure> {
+    let planned = plan_only(cell, r, from, to, planner, shapes)?;
+    certify(cell, r, &planned.samples, obstacles)?;
+    Ok(planned)
+}
+
+/// The planner's move among `shapes` (every obstacle of the cell, in order), not certified.
+fn plan_only(
+    cell: &Cell,
+    r: usize,
+    from: usize,
+    to: usize,
+    planner: &PlannerOptions,
+    shapes: &[ConvexPolygon],
+) -> Result<PlannedMove, MoveFailure> {
+    let robot = &cell.robots[r];
     let (a, b) = (node_pose(cell, r, from), node_pose(cell, r, to));
-    let planned = plan_move(
+    plan_move(
         &robot.shape,
         &limits(robot),
-        &shapes,
+        shapes,
         cell.delta,
         a,
         b,
@@ -129,9 +163,26 @@ pub fn certified_move(
             obstacle: cell.obstacles[obstacle].name.clone(),
         },
         other => MoveFailure::Plan(other),
-    })?;
-    certify(cell, r, &planned.samples, obstacles)?;
-    Ok(planned)
+    })
+}
+
+/// Relative slack on the distances within which an obstacle counts as near a move.
+const NEAR_SLACK: f64 = 1.05;
+
+/// The smallest box holding the points.
+fn bounding_box(points: &[Vec2]) -> (Vec2, Vec2) {
+    points.iter().fold(
+        (Vec2::repeat(f64::INFINITY), Vec2::repeat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+    )
+}
+
+/// Whether two boxes come within `reach` of each other (on each axis).
+fn boxes_within(a: &(Vec2, Vec2), b: &(Vec2, Vec2), reach: f64) -> bool {
+    a.0.x <= b.1.x + reach
+        && b.0.x <= a.1.x + reach
+        && a.0.y <= b.1.y + reach
+        && b.0.y <= a.1.y + reach
 }
 
 /// The checker's verdict on one robot's samples against the obstacles.
@@ -171,71 +222,236 @@ pub(crate) fn certify(
     }
 }
 
-/// Travel times of every robot between every pair of its nodes, each move certified.
-#[derive(Clone, Debug)]
-pub struct MoveTable {
-    tasks: usize,
-    /// Per robot, `(tasks + 1)²` row-major; infinite where no move exists.
-    travel: Vec<Vec<f64>>,
-    /// Per robot, the moves that failed: `(from, to, why)` with `from < to`.
-    pub failures: Vec<Vec<(usize, usize, MoveFailure)>>,
-    /// Moves planned and certified (one per unordered node pair).
-    pub certified: usize,
+/// The admissible lower bound of every move of the cell (see [`Bounds`]).
+pub fn bounds(cell: &Cell) -> Bounds {
+    let pose = |p: &Pose| (p.pos, p.theta);
+    Bounds::new(
+        cell.robots
+            .iter()
+            .map(|r| BoundLimits {
+                max_speed: r.max_speed,
+                max_accel: r.max_accel,
+                max_angular_accel: r.max_accel / r.shape.radius(),
+                max_turn_rate: r.max_turn_rate,
+            })
+            .collect(),
+        cell.robots.iter().map(|r| pose(&r.home)).collect(),
+        cell.tasks.iter().map(|t| pose(&t.at)).collect(),
+    )
 }
 
-impl MoveTable {
-    /// Plans and certifies every move of every robot, in parallel. `progress` is called once
-    /// per move planned, from any thread.
-    pub fn build(cell: &Cell, planner: &PlannerOptions, progress: &(dyn Fn() + Sync)) -> Self {
-        let obstacles = cell.obstacle_bodies();
-        let n = cell.tasks.len() + 1;
-        let jobs: Vec<(usize, usize, usize)> = (0..cell.robots.len())
-            .flat_map(|r| {
-                let nodes = robot_nodes(cell, r);
-                let mut pairs = Vec::with_capacity(nodes.len() * nodes.len() / 2);
-                for (i, &a) in nodes.iter().enumerate() {
-                    pairs.extend(nodes[i + 1..].iter().map(move |&b| (r, a, b)));
-                }
-                pairs
-            })
-            .collect();
-        let results: Vec<Result<f64, MoveFailure>> = jobs
-            .par_iter()
-            .map(|&(r, a, b)| {
-                let m = certified_move(cell, r, a, b, planner, &obstacles).map(|m| m.duration);
-                progress();
-                m
-            })
-            .collect();
-        let mut travel = vec![vec![f64::INFINITY; n * n]; cell.robots.len()];
-        let mut failures = vec![Vec::new(); cell.robots.len()];
-        let mut certified = 0;
-        for (r, row) in travel.iter_mut().enumerate() {
-            row[0] = 0.0;
-            for node in robot_nodes(cell, r) {
-                row[node * n + node] = 0.0;
-            }
-        }
-        for (&(r, a, b), result) in jobs.iter().zip(results) {
-            match result {
-                Ok(time) => {
-                    travel[r][a * n + b] = time;
-                    travel[r][b * n + a] = time;
-                    certified += 1;
-                }
-                Err(why) => failures[r].push((a, b, why)),
-            }
-        }
-        MoveTable {
-            tasks: cell.tasks.len(),
-            travel,
-            failures,
-            certified,
+/// Independent locks over the store, so that planning threads seldom wait for each other.
+const SHARDS: usize = 64;
+
+/// A move `(robot, a, b)` with `a <= b`, planned once; its reverse made on first use.
+#[derive(Default)]
+struct Slot {
+    forward: OnceLock<Result<Arc<PlannedMove>, MoveFailure>>,
+    backward: OnceLock<Arc<PlannedMove>>,
+}
+
+/// One lock's share of the store: `(robot, a, b)` to its slot.
+type Shard = HashMap<(usize, usize, usize), Arc<Slot>>;
+
+/// The one store of planned and certified moves of a cell. Thread-safe: any thread may ask
+/// for any move; each is planned and certified once (a thread asking for a move being
+/// planned waits for it), and a move and its reverse share one plan. The planner is
+/// deterministic, so what the store holds never depends on who asked first.
+pub struct MoveStore {
+    cell: Cell,
+    planner: PlannerOptions,
+    shapes: Vec<ConvexPolygon>,
+    obstacles: Vec<Body>,
+    /// Each obstacle's bounding box.
+    boxes: Vec<(Vec2, Vec2)>,
+    shards: Vec<Mutex<Shard>>,
+    planned: AtomicUsize,
+}
+
+impl fmt::Debug for MoveStore {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("MoveStore")
+            .field("planned", &self.planned())
+            .finish_non_exhaustive()
+    }
+}
+
+impl MoveStore {
+    /// An empty store for `cell` (kept as a copy) and these planner settings.
+    pub fn new(cell: &Cell, planner: &PlannerOptions) -> Self {
+        MoveStore {
+            cell: cell.clone(),
+            planner: *planner,
+            shapes: cell.obstacles.iter().map(|o| o.shape.clone()).collect(),
+            obstacles: cell.obstacle_bodies(),
+            boxes: cell
+                .obstacles
+                .iter()
+                .map(|o| bounding_box(o.shape.vertices()))
+                .collect(),
+            shards: (0..SHARDS).map(|_| Mutex::new(HashMap::new())).collect(),
+            planned: AtomicUsize::new(0),
         }
     }
 
-    /// Travel time of robot `r` from node `from` to node `to`; infinite if it has no move.
-    pub fn travel(&self, r: usize, from: usize, to: usize) -> f64 {
-        self.travel[r][from * (self.tasks + 1) + to]
+    fn slot(&self, r: usize, a: usize, b: usize) -> Arc<Slot> {
+        let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
+        let mut map = self.shards[shard]
+            .lock()
+            .expect("no thread panics holding it");
+        map.entry((r, a, b)).or_default().clone()
+    }
+
+    /// Robot `r`'s certified move from node `from` to node `to`, planned on first use.
+    pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
+        let (a, b) = (from.min(to), from.max(to));
+        let slot = self.slot(r, a, b);
+        let planned = slot
+            .forward
+            .get_or_init(|| {
+                self.planned.fetch_add(1, Ordering::Relaxed);
+                self.plan(r, a, b).map(Arc::new)
+            })
+            .clone()?;
+        Ok(if from <= to {
+            planned
+        } else {
+            slot.backward
+                .get_or_init(|| Arc::new(reversed(&planned)))
+                .clone()
+        })
+    }
+
+    /// Plans and certifies robot `r`'s move from `a` to `b`: the same move as
+    /// [`certified_move`] with every obstacle, found faster when few obstacles are near it.
+    ///
+    /// The planner keeps G out of each obstacle grown by the robot swept over the move's
+    /// rotation (within the disc of radius `radius / cos(rotation_step / 2)`) and the
+    /// clearance disc (within `δ(1 + clearance_margin) / cos(π/16)`), so an obstacle farther
+    /// than their sum from the straight segment can neither block it nor block its ends. If
+    /// the obstacles near the segment leave it free, the straight move is the planner's answer
+    /// with every obstacle too, bit for bit (the boundary tolerance only grows with more
+    /// obstacles, and a free straight move does not depend on it); otherwise the move is
+    /// planned again with every obstacle. The checker then sees the obstacles near the
+    /// samples: a farther one cannot come within δ.
+    fn plan(&self, r: usize, a: usize, b: usize) -> Result<PlannedMove, MoveFailure> {
+        let cell = &self.cell;
+        let robot = &cell.robots[r];
+        let (pa, pb) = (node_pose(cell, r, a).pos, node_pose(cell, r, b).pos);
+        let clearance = cell.delta * (1.0 + self.planner.clearance_margin);
+        let reach = (robot.shape.radius() / (self.planner.rotation_step / 2.0).cos()
+            + 2.0 * clearance)
+            * NEAR_SLACK
+            + cell.delta;
+        let segment = bounding_box(&[pa, pb]);
+        let near: Vec<usize> = (0..self.boxes.len())
+            .filter(|&k| boxes_within(&self.boxes[k], &segment, reach))
+            .collect();
+        let planned = if near.len() < self.boxes.len() {
+            let shapes: Vec<ConvexPolygon> = near.iter().map(|&k| self.shapes[k].clone()).collect();
+            let straight = plan_move(
+                &robot.shape,
+                &limits(robot),
+                &shapes,
+                cell.delta,
+                node_pose(cell, r, a),
+                node_pose(cell, r, b),
+                &self.planner,
+            )
+            .ok()
+            .filter(|m| m.path.len() == 2 && m.path[0] == pa && m.path[1] == pb);
+            match straight {
+                Some(m) => m,
+                None => plan_only(cell, r, a, b, &self.planner, &self.shapes)?,
+            }
+        } else {
+            plan_only(cell, r, a, b, &self.planner, &self.shapes)?
+        };
+        let seen = bounding_box(&planned.samples.iter().map(|s| s.pos).collect::<Vec<_>>());
+        let reach = robot.shape.radius() * NEAR_SLACK + 2.0 * cell.delta;
+        let bodies: Vec<Body> = (0..self.boxes.len())
+            .filter(|&k| boxes_within(&self.boxes[k], &seen, reach))
+            .map(|k| self.obstacles[k].clone())
+            .collect();
+        certify(cell, r, &planned.samples, &bodies)?;
+        Ok(planned)
+    }
+
+    /// The duration of robot `r`'s move between two nodes (the same both ways), planned on
+    /// first use.
+    pub fn duration(&self, r: usize, from: usize, to: usize) -> Result<f64, MoveFailure> {
+        self.get(r, from.min(to), from.max(to)).map(|m| m.duration)
+    }
+
+    /// The move's outcome if it was planned already; `None` if not (nothing is planned).
+    pub fn known(&self, r: usize, from: usize, to: usize) -> Option<Result<f64, MoveFailure>> {
+        let (a, b) = (from.min(to), from.max(to));
+        let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
+        let map = self.shards[shard]
+            .lock()
+            .expect("no thread panics holding it");
+        let slot = map.get(&(r, a, b))?;
+        slot.forward
+            .get()
+            .map(|m| m.as_ref().map(|m| m.duration).map_err(Clone::clone))
+    }
+
+    /// Plans the moves `(robot, a, b)` not planned yet, in parallel; `progress` is called
+    /// once per move (from any thread). Returns each move's duration (infinite: no move) in
+    /// the order given.
+    pub fn plan_all(
+        &self,
+        moves: &[(usize, usize, usize)],
+        progress: &(dyn Fn() + Sync),
+    ) -> Vec<f64> {
+        moves
+            .par_iter()
+            .map(|&(r, a, b)| {
+                let d = self.duration(r, a, b).unwrap_or(f64::INFINITY);
+                progress();
+                d
+            })
+            .collect()
+    }
+
+    /// Moves planned so far (one per robot and unordered pair of nodes).
+    pub fn planned(&self) -> usize {
+        self.planned.load(Ordering::Relaxed)
+    }
+
+    /// The cell the store plans for.
+    pub fn cell(&self) -> &Cell {
+        &self.cell
+    }
+
+    /// The cell's obstacles as checker bodies.
+    pub fn obstacles(&self) -> &[Body] {
+        &self.obstacles
+    }
+
+    /// The planner's settings.
+    pub fn planner(&self) -> &PlannerOptions {
+        &self.planner
+    }
+}
+
+/// The same move run backwards: the same poses, visited in reverse order.
+fn reversed(m: &PlannedMove) -> PlannedMove {
+    let samples = m
+        .samples
+        .iter()
+        .rev()
+        .map(|s| Sample {
+            t: m.duration - s.t,
+            vel: -s.vel,
+            omega: -s.omega,
+            ..*s
+        })
+        .collect();
+    PlannedMove {
+        duration: m.duration,
+        path: m.path.iter().rev().copied().collect(),
+        samples,
+        primitives: m.primitives.iter().rev().map(|p| p.reversed()).collect(),
     }
 }

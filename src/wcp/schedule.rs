@@ -1,16 +1,15 @@
 //! The timed schedule: every robot's moves, waits and tasks, sampled into trajectories.
 
 use super::legs::{default_legs, leg, with_leg, HoldReason, Leg, Legs, Piece};
-use super::moves::{certified_move, node_name, node_pose, MoveFailure};
+use super::moves::{node_name, node_pose, MoveFailure, MoveStore};
 use super::sequencer::Step;
 use crate::cell::Cell;
 use crate::collision::{Body, CheckReport, Scene};
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::{Motion, Pose, Sample, Trajectory};
-use crate::planning::{PlannedMove, PlannerOptions};
-use std::collections::HashMap;
+use crate::planning::PlannedMove;
 use std::f64::consts::TAU;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 /// What a robot does during a segment of its schedule. Nodes are robot-local: 0 is home,
 /// `1 + t` is task `t`.
@@ -221,96 +220,6 @@ pub struct Schedule {
     pub makespan: f64,
 }
 
-type Planned = Result<Arc<PlannedMove>, MoveFailure>;
-/// Per (robot, lower node, higher node): the move that way, and its reverse once asked for.
-type Plans = HashMap<(usize, usize, usize), (Planned, Option<Planned>)>;
-
-/// Planned and certified moves, kept for reuse across iterations of the loop and shared by
-/// threads. A move and its reverse share one plan.
-pub struct MoveCache<'a> {
-    cell: &'a Cell,
-    planner: PlannerOptions,
-    obstacles: Vec<Body>,
-    moves: Mutex<Plans>,
-}
-
-impl<'a> MoveCache<'a> {
-    /// An empty cache for `cell`.
-    pub fn new(cell: &'a Cell, planner: PlannerOptions) -> Self {
-        MoveCache {
-            cell,
-            planner,
-            obstacles: cell.obstacle_bodies(),
-            moves: Mutex::new(HashMap::new()),
-        }
-    }
-
-    /// The cell's obstacles as checker bodies.
-    pub fn obstacles(&self) -> &[Body] {
-        &self.obstacles
-    }
-
-    /// The planner's settings.
-    pub fn planner(&self) -> &PlannerOptions {
-        &self.planner
-    }
-
-    /// Robot `r`'s certified move between two nodes, planned on first use. Planning runs
-    /// outside the lock; the planner is deterministic, so two threads planning the same
-    /// move at once find the same one.
-    pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
-        let (a, b) = (from.min(to), from.max(to));
-        let key = (r, a, b);
-        let known = self.lock().get(&key).cloned();
-        let (forward, backward) = match known {
-            Some(entry) => entry,
-            None => {
-                let planned = certified_move(self.cell, r, a, b, &self.planner, &self.obstacles)
-                    .map(Arc::new);
-                let entry = (planned, None);
-                self.lock().entry(key).or_insert(entry).clone()
-            }
-        };
-        if from <= to {
-            return forward;
-        }
-        if let Some(back) = backward {
-            return back;
-        }
-        let back = forward.map(|m| Arc::new(reversed(&m)));
-        if let Some(entry) = self.lock().get_mut(&key) {
-            entry.1 = Some(back.clone());
-        }
-        back
-    }
-
-    fn lock(&self) -> std::sync::MutexGuard<'_, Plans> {
-        // A panic while holding the lock leaves the map consistent: entries are whole.
-        self.moves.lock().unwrap_or_else(|e| e.into_inner())
-    }
-}
-
-/// The same move run backwards: the same poses, visited in reverse order.
-fn reversed(m: &PlannedMove) -> PlannedMove {
-    let samples = m
-        .samples
-        .iter()
-        .rev()
-        .map(|s| Sample {
-            t: m.duration - s.t,
-            vel: -s.vel,
-            omega: -s.omega,
-            ..*s
-        })
-        .collect();
-    PlannedMove {
-        duration: m.duration,
-        path: m.path.iter().rev().copied().collect(),
-        samples,
-        primitives: m.primitives.iter().rev().map(|p| p.reversed()).collect(),
-    }
-}
-
 /// Why a schedule cannot be built.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BuildError {
@@ -386,12 +295,13 @@ impl BuildError {
 
 impl Schedule {
     /// Times every robot's route: from home at t = 0, each leg (by default the planned
-    /// move, at once; see [`Leg`]), each task held for its duration, back home.
+    /// move, at once; see [`Leg`]), each task held for its duration, back home. The moves
+    /// come from the store (planned there if they were not yet).
     pub fn build(
         cell: &Cell,
         routes: &[Vec<usize>],
         legs: &[Arc<Vec<Leg>>],
-        moves: &MoveCache,
+        moves: &MoveStore,
     ) -> Result<Schedule, BuildError> {
         let robots = (0..routes.len())
             .map(|r| {
@@ -505,7 +415,7 @@ impl RobotSchedule {
         r: usize,
         route: &[usize],
         legs: &[Leg],
-        moves: &MoveCache,
+        moves: &MoveStore,
     ) -> Result<RobotSchedule, BuildError> {
         let mut line = Timeline::start(cell, r);
         let nodes = route_nodes(route);

@@ -4,11 +4,13 @@
 //! search against.
 
 use super::describe;
-use super::{build, sequencer_error, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
+use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
 use crate::cell::{Cell, InputError};
 use crate::collision::check;
-use crate::wcp::schedule::{Activity, Delay, MoveCache, Segment};
-use crate::wcp::sequencer::{self, Conflict};
+use crate::wcp::moves::MoveStore;
+use crate::wcp::schedule::{Activity, Delay, Segment};
+use crate::wcp::sequence::sequence_with;
+use crate::wcp::sequencer::Conflict;
 use std::time::Instant;
 
 /// Solves the cell: the loop of the module's documentation, at most
@@ -20,20 +22,18 @@ pub fn solve(
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
     let mut times = prepared.times;
-    let inst = &prepared.instance;
-    let cache = MoveCache::new(cell, opts.planner);
+    let cache = &prepared.moves;
     let robots = cell.robots.len();
     let mut conflicts: Vec<Conflict> = Vec::new();
     let clock = Instant::now();
-    let blind =
-        sequencer::solve(inst, &[], &opts.sequencer).map_err(|e| sequencer_error(cell, e))?;
+    let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
     times.sequencing += clock.elapsed();
     let mut routes = blind.sequences.clone();
     let mut delays: Vec<Delay> = Vec::new();
     let mut iterations = Vec::new();
     loop {
         let clock = Instant::now();
-        let schedule = build(cell, &routes, &Delay::legs(robots, &delays), &cache)?;
+        let schedule = build(cell, &routes, &Delay::legs(robots, &delays), cache)?;
         times.scheduling += clock.elapsed();
         let clock = Instant::now();
         let report = check(&schedule.scene(cell), &opts.check);
@@ -98,8 +98,7 @@ pub fn solve(
                 b: (b, seg_b.activity.step()),
             });
             let clock = Instant::now();
-            let resequenced = sequencer::solve(inst, &conflicts, &opts.sequencer)
-                .map_err(|e| sequencer_error(cell, e))?;
+            let resequenced = sequence_with(cell, prepared, &conflicts, opts, None, progress)?;
             times.sequencing += clock.elapsed();
             if resequenced.violations == 0 {
                 best = Some(Candidate {
@@ -121,11 +120,11 @@ pub fn solve(
                     continue;
                 };
                 let delay =
-                    shortest_delay(cell, &routes, &delays, &cache, full, y, seg_x.end, opts)?;
+                    shortest_delay(cell, &routes, &delays, cache, full, y, seg_x.end, opts)?;
                 let mut candidate = delays.clone();
                 candidate.push(delay);
                 let makespan =
-                    build(cell, &routes, &Delay::legs(robots, &candidate), &cache)?.makespan;
+                    build(cell, &routes, &Delay::legs(robots, &candidate), cache)?.makespan;
                 if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                     best = Some(Candidate {
                         makespan,
@@ -182,7 +181,7 @@ fn shortest_delay(
     cell: &Cell,
     routes: &[Vec<usize>],
     delays: &[Delay],
-    cache: &MoveCache,
+    cache: &MoveStore,
     full: Delay,
     other: usize,
     segment_end: f64,

@@ -14,16 +14,17 @@ mod search;
 pub use remedies::Remedies;
 pub use search::SearchOptions;
 
-use super::graph::{check_reachable, WcpGraph};
+use super::graph::{check_reachable, plan_reaches};
 use super::legs::Legs;
-use super::moves::MoveTable;
-use super::schedule::{BuildError, Collision, Delay, MoveCache, Schedule};
-use super::sequencer::{Instance, SequencerError, SequencerOptions};
+use super::moves::{bounds, robot_nodes, MoveStore};
+use super::schedule::{BuildError, Collision, Delay, Schedule};
+use super::sequencer::{Bounds, ExactArcs, SequencerError, SequencerOptions};
 use crate::cell::{Cell, InputError};
 use crate::collision::{CheckOptions, CheckReport};
 use crate::geometry::Vec2;
 use crate::motion::Pose;
 use crate::planning::PlannerOptions;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// How collisions are fed back.
@@ -52,7 +53,31 @@ pub struct SolveOptions {
     pub planner: PlannerOptions,
     /// The checker's settings for the schedules.
     pub check: CheckOptions,
+    /// Wall time for the whole solve, from [`prepare`] on: the sequencer then returns the
+    /// best certified plan found so far, and the search its best certified schedule. `None`:
+    /// no limit, and the result depends only on the input and the seed.
+    pub time_limit: Option<Duration>,
+    /// Which moves are planned before sequencing.
+    pub planning: Planning,
 }
+/// Which moves [`prepare`] plans and certifies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Planning {
+    /// [`Planning::All`] for cells of at most [`AUTO_ALL_MAX_MOVES`] moves, else
+    /// [`Planning::Lazy`].
+    #[default]
+    Auto,
+    /// For each task, the move from the home of its nearest allowed robot that can reach it;
+    /// the sequencer works on lower bounds of the others and plans those its plans use.
+    Lazy,
+    /// Every move of every robot between every two of its nodes (robots × nodes² / 2).
+    All,
+}
+
+/// Cells with at most this many moves (robots × unordered pairs of their nodes) are planned
+/// whole under [`Planning::Auto`]: a second or two of planning, and the sequencer then
+/// searches on exact times from the start.
+pub const AUTO_ALL_MAX_MOVES: usize = 100_000;
 
 impl Default for SolveOptions {
     fn default() -> Self {
@@ -63,6 +88,8 @@ impl Default for SolveOptions {
             sequencer: SequencerOptions::default(),
             planner: PlannerOptions::default(),
             check: CheckOptions::default(),
+            time_limit: None,
+            planning: Planning::Auto,
         }
     }
 }
@@ -76,6 +103,11 @@ pub trait Progress: Sync {
     fn move_planned(&self) {}
     /// Round `k` (from 1) checked a schedule of this makespan.
     fn iteration(&self, _k: usize, _makespan: f64, _collision: Option<&Collision>) {}
+    /// The sequencer starts its round `round` (from 1) on the travel times known so far.
+    fn sequencing(&self, _round: usize) {}
+    /// The sequencer found a plan of this makespan (on the travel times it knows; from any
+    /// thread).
+    fn best(&self, _makespan: f64) {}
 }
 
 impl Progress for () {}
@@ -83,11 +115,11 @@ impl Progress for () {}
 /// Wall time spent in each stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
-    /// Planning and certifying every move.
+    /// Planning and certifying the moves [`prepare`] plans (see [`Planning`]).
     pub planning: Duration,
-    /// Building the graph and the sequencer's instance.
+    /// Building the lower bounds.
     pub graph: Duration,
-    /// Sequencer runs.
+    /// Sequencer runs, with the moves they plan.
     pub sequencing: Duration,
     /// Timing the schedules (including moves planned on demand).
     pub scheduling: Duration,
@@ -165,14 +197,17 @@ pub struct Iteration {
     pub remedy: Option<Remedy>,
 }
 
-/// The cell's moves and graph, ready for sequencing.
+/// The cell's moves and bounds, ready for sequencing.
 pub struct Prepared {
-    /// Every robot's certified moves.
-    pub moves: MoveTable,
-    /// The work-cell graph.
-    pub graph: WcpGraph,
-    /// The sequencer's instance, read from the graph.
-    pub instance: Instance,
+    /// The one store of planned and certified moves.
+    pub moves: MoveStore,
+    /// The lower bound of every move.
+    pub bounds: Arc<Bounds>,
+    /// The moves every sequencing starts from: those [`prepare`] planned, per robot, both
+    /// ways.
+    pub known: Arc<ExactArcs>,
+    /// When [`SolveOptions::time_limit`] runs out.
+    pub deadline: Option<Instant>,
     /// Time spent so far.
     pub times: StageTimes,
 }
@@ -206,38 +241,65 @@ pub struct Solved {
     pub times: StageTimes,
 }
 
-/// Plans and certifies every move, builds the graph and the sequencer's instance. A task
-/// that no allowed robot can reach is an input error.
+/// Builds the lower bounds, plans and certifies for every task the move from the home of
+/// its nearest allowed robot (the next nearest when that one fails), or every move (see
+/// [`Planning`]). A task that no allowed robot
+/// can reach is an input error. The time limit counts from here.
 pub fn prepare(
     cell: &Cell,
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Prepared, InputError> {
+    let deadline = opts
+        .time_limit
+        .and_then(|limit| Instant::now().checked_add(limit));
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    progress.planning(move_count(cell));
-    let moves = MoveTable::build(cell, &opts.planner, &|| progress.move_planned());
-    check_reachable(cell, &moves)?;
-    times.planning = clock.elapsed();
-    let clock = Instant::now();
-    let graph = WcpGraph::new(cell, &moves);
-    let instance = graph.instance(cell).map_err(|e| sequencer_error(cell, e))?;
+    let bounds = Arc::new(bounds(cell));
     times.graph = clock.elapsed();
-    Ok(Prepared {
-        moves,
-        graph,
-        instance,
-        times,
-    })
-}
-
-fn move_count(cell: &Cell) -> usize {
-    (0..cell.robots.len())
+    let clock = Instant::now();
+    let moves = MoveStore::new(cell, &opts.planner);
+    let all_moves: usize = (0..cell.robots.len())
         .map(|r| {
-            let n = 1 + cell.tasks.iter().filter(|t| t.robots.contains(&r)).count();
+            let n = robot_nodes(cell, r).len();
             n * (n - 1) / 2
         })
-        .sum()
+        .sum();
+    let plan_all = match opts.planning {
+        Planning::Auto => all_moves <= AUTO_ALL_MAX_MOVES,
+        Planning::Lazy => false,
+        Planning::All => true,
+    };
+    let pairs: Vec<(usize, usize, usize)> = if plan_all {
+        let mut pairs = Vec::with_capacity(all_moves);
+        for r in 0..cell.robots.len() {
+            let nodes = robot_nodes(cell, r);
+            for (i, &a) in nodes.iter().enumerate() {
+                pairs.extend(nodes[i + 1..].iter().map(|&b| (r, a, b)));
+            }
+        }
+        progress.planning(pairs.len());
+        moves.plan_all(&pairs, &|| progress.move_planned());
+        pairs
+    } else {
+        progress.planning(cell.tasks.len());
+        plan_reaches(cell, &moves, &bounds, &|| progress.move_planned())
+    };
+    check_reachable(cell, &moves)?;
+    let mut known: ExactArcs = vec![Default::default(); cell.robots.len()];
+    for &(r, a, b) in &pairs {
+        let d = moves.duration(r, a, b).unwrap_or(f64::INFINITY);
+        known[r].insert((a, b), d);
+        known[r].insert((b, a), d);
+    }
+    times.planning = clock.elapsed();
+    Ok(Prepared {
+        moves,
+        bounds,
+        known: Arc::new(known),
+        deadline,
+        times,
+    })
 }
 
 /// A sequencer error in the cell's terms.
@@ -278,7 +340,7 @@ fn build(
     cell: &Cell,
     routes: &[Vec<usize>],
     legs: &Legs,
-    cache: &MoveCache,
+    cache: &MoveStore,
 ) -> Result<Schedule, InputError> {
     Schedule::build(cell, routes, legs, cache).map_err(|e| build_error(cell, e))
 }

@@ -26,8 +26,9 @@ use crate::planning::{
     convex_hull, plan_move, time_primitives, PlannedMove, Primitive, RobotLimits,
 };
 use crate::wcp::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
+use crate::wcp::moves::MoveStore;
 use crate::wcp::moves::{certify, node_pose};
-use crate::wcp::schedule::{route_nodes, Activity, Collision, MoveCache, RobotSchedule, Segment};
+use crate::wcp::schedule::{route_nodes, Activity, Collision, RobotSchedule, Segment};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -49,7 +50,7 @@ const SWEEP_CHUNK: usize = 8;
 /// What the remedies read: the cell, the moves, the options, and plans made so far.
 pub(super) struct Ctx<'a> {
     pub cell: &'a Cell,
-    pub moves: &'a MoveCache<'a>,
+    pub moves: &'a MoveStore,
     pub opts: &'a SolveOptions,
     fixtures: Vec<ConvexPolygon>,
     /// Motions planned for remedies, by robot, end poses and extra obstacles: the same
@@ -148,7 +149,7 @@ impl Default for Remedies {
 }
 
 impl<'a> Ctx<'a> {
-    pub fn new(cell: &'a Cell, moves: &'a MoveCache<'a>, opts: &'a SolveOptions) -> Self {
+    pub fn new(cell: &'a Cell, moves: &'a MoveStore, opts: &'a SolveOptions) -> Self {
         Ctx {
             cell,
             moves,

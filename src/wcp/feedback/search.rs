@@ -28,11 +28,12 @@
 //! reports the schedule whose first collision came latest, and that collision.
 
 use super::remedies::{candidates, Ctx, Remedies, View};
-use super::{build, sequencer_error, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
+use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckReport};
 use crate::wcp::legs::{default_legs, HoldReason, Legs, Piece};
-use crate::wcp::schedule::{Collision, MoveCache, RobotSchedule, Schedule};
+use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
+use crate::wcp::sequence::sequence_with;
 use crate::wcp::sequencer::{self, Conflict};
 use rayon::prelude::*;
 use std::cmp::{Ordering, Reverse};
@@ -136,6 +137,8 @@ struct Search<'a> {
     seen: HashSet<u128>,
     times: super::StageTimes,
     checked: usize,
+    /// The collision-blind plan's makespan: what a re-sequencing waits in the queue at.
+    blind_makespan: f64,
     /// The certified node of least makespan so far.
     best: Option<usize>,
     /// The colliding node whose first collision came latest.
@@ -149,28 +152,28 @@ pub(super) fn solve(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
-    let cache = MoveCache::new(cell, opts.planner);
+    let cache = &prepared.moves;
     let mut times = prepared.times;
     let clock = Instant::now();
-    let blind = sequencer::solve(&prepared.instance, &[], &opts.sequencer)
-        .map_err(|e| sequencer_error(cell, e))?;
+    let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
     times.sequencing += clock.elapsed();
     let mut search = Search {
         cell,
         prepared,
         opts,
-        ctx: Ctx::new(cell, &cache, opts),
+        ctx: Ctx::new(cell, cache, opts),
         nodes: Vec::new(),
         queue: BinaryHeap::new(),
         seen: HashSet::new(),
         times,
         checked: 0,
+        blind_makespan: blind.makespan,
         best: None,
         furthest: None,
     };
     let legs = default_legs(cell.robots.len());
     search.seen.insert(fingerprint(&blind.sequences, &legs));
-    let root = build(cell, &blind.sequences, &legs, &cache)?;
+    let root = build(cell, &blind.sequences, &legs, cache)?;
     let root = search.add(Node {
         routes: Arc::new(blind.sequences.clone()),
         conflicts: Arc::new(Vec::new()),
@@ -197,6 +200,10 @@ pub(super) fn solve(
                 "the search's budget of {} schedules",
                 opts.search.max_nodes
             ));
+            break;
+        }
+        if prepared.deadline.is_some_and(|d| Instant::now() >= d) {
+            stop = Some("the solve's time limit".to_owned());
             break;
         }
         if started.elapsed() >= opts.search.time_limit {
@@ -275,16 +282,13 @@ impl Search<'_> {
         })
     }
 
-    /// The sequencer's settings for a re-sequencing: the exact search as for the blind
-    /// schedule, a quarter of one chain of the local search from the parent's routes (a
-    /// re-sequencing is one of many children; the routes it departs from were searched in
-    /// full).
-    fn resequencer(&self) -> sequencer::SequencerOptions {
-        let full = &self.opts.sequencer;
-        sequencer::SequencerOptions {
-            iterations: (full.iterations / RESEQUENCE_SHARE).max(1),
-            ..full.clone()
-        }
+    /// The settings of a re-sequencing: the exact search as for the blind schedule, and a
+    /// share of the local search, started from the parent's routes (a re-sequencing is one
+    /// of many children; the routes it departs from were searched in full).
+    fn resequencer(&self) -> SolveOptions {
+        let mut opts = self.opts.clone();
+        opts.sequencer.iterations = (opts.sequencer.iterations / RESEQUENCE_SHARE).max(1);
+        opts
     }
 
     /// Checks the nodes given (in parallel, results in order) and records the verdicts.
@@ -336,13 +340,14 @@ impl Search<'_> {
         let mut conflicts = (*self.nodes[id].conflicts).clone();
         conflicts.push(conflict);
         let clock = Instant::now();
-        let solution = sequencer::repair(
-            &self.prepared.instance,
+        let solution = sequence_with(
+            self.cell,
+            self.prepared,
             &conflicts,
-            &self.nodes[id].routes,
             &self.resequencer(),
-        )
-        .map_err(|e| sequencer_error(self.cell, e))?;
+            Some(&self.nodes[id].routes),
+            &(),
+        )?;
         self.times.sequencing += clock.elapsed();
         // Robots whose routes stay keep their legs: their remedies still answer their
         // collisions.
@@ -395,7 +400,8 @@ impl Search<'_> {
             node.robots.clone(),
             node.depth + 1,
         );
-        let route_makespan = self.prepared.instance.makespan(&routes);
+        // No re-sequencing is expected to beat the collision-blind plan.
+        let route_makespan = self.blind_makespan;
         let (discrepancies, deviated_at) = (node.discrepancies, node.deviated_at);
         let mut made = Vec::new();
         for child in children {
@@ -458,8 +464,6 @@ impl Search<'_> {
                 conflicts,
                 legs: default_legs(self.cell.robots.len()),
                 robots: Vec::new(),
-                // No re-sequencing beats the routes' own makespan, waits aside: the
-                // sequencer only gets more conflicts to avoid.
                 makespan: route_makespan,
                 parent: Some(id),
                 remedy: Some(Remedy::Resequence),

@@ -28,10 +28,58 @@ fn best_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -
     best.1.expect("every task has a capable robot")
 }
 
+/// The best insertion of unassigned task `t` next to one of its near tasks or at an end of
+/// the route of a robot with a near home (granular models; robots, then gaps, in increasing
+/// order on ties).
+fn near_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -> Move {
+    let near = model.neighbours.as_ref().expect("a granular model");
+    let x = t + 1;
+    let mut gaps: Vec<(usize, usize)> = Vec::new();
+    for u in near.of(t) {
+        let (r, q) = plan.pos[u];
+        if r != usize::MAX && model.can(r, t) {
+            gaps.extend([(r, q - 1), (r, q)]);
+        }
+    }
+    for &r in &near.homes[t] {
+        gaps.extend([(r, 0), (r, plan.routes[r].len() - 2)]);
+    }
+    gaps.sort_unstable();
+    gaps.dedup();
+    let mut best = (Obj::WORST, None);
+    for (r, gap) in gaps {
+        let route = &plan.routes[r];
+        let (a, b) = (route[gap], route[gap + 1]);
+        let added = model.c(r, a, x) + model.dn[x] + model.c(r, x, b) - model.c(r, a, b);
+        let mv = Move::Insert { t, r, gap };
+        let times = [(r, plan.time[r] + added)];
+        if let Some(obj) = plan.evaluate(model, &mv, &times, &best.0, scratch) {
+            best = (obj, Some(mv));
+        }
+    }
+    best.1.expect("every task has a capable robot")
+}
+
 /// Inserts the tasks of `order`, one after the other, where they cost least.
 pub(super) fn insert_all(model: &Model, plan: &mut Plan, order: &[usize], scratch: &mut Scratch) {
     for &t in order {
         let mv = best_insertion(model, plan, t, scratch);
+        plan.apply(model, &mv, scratch);
+    }
+}
+
+/// As [`insert_all`], at the places [`near_insertion`] looks; every node whose arcs change
+/// goes to `touched`.
+fn insert_near(
+    model: &Model,
+    plan: &mut Plan,
+    order: &[usize],
+    scratch: &mut Scratch,
+    touched: &mut Vec<usize>,
+) {
+    for &t in order {
+        let mv = near_insertion(model, plan, t, scratch);
+        touched.extend(plan.touched(&mv));
         plan.apply(model, &mv, scratch);
     }
 }
@@ -56,16 +104,18 @@ pub(super) fn initial_order(model: &Model, k: usize, rng: &mut ChaCha8Rng) -> Ve
 
 /// Removes a random handful of tasks and inserts them again in a random
 /// order. The tasks are picked at random, from a longest route, or close
-/// to a random task, so that both balance and geometry get shaken.
+/// to a random task, so that both balance and geometry get shaken. Returns the nodes whose
+/// arcs changed when the model is granular (empty otherwise).
 pub(super) fn ruin_recreate(
     model: &Model,
     plan: &mut Plan,
     rng: &mut ChaCha8Rng,
     scratch: &mut Scratch,
-) {
+) -> Vec<usize> {
     let n = model.tasks;
+    let mut touched = Vec::new();
     if n == 0 {
-        return;
+        return touched;
     }
     // At least 20 (or all): smaller ruins keep falling back into the same
     // local optimum on small instances.
@@ -85,17 +135,45 @@ pub(super) fn ruin_recreate(
             tasks.truncate(q);
             tasks
         }
+        _ if model.neighbours.is_some() => related_near(model, rng.random_range(0..n), q),
         _ => related(model, rng.random_range(0..n), q),
     };
     if picked.is_empty() {
         picked.push(rng.random_range(0..n));
     }
+    let granular = model.neighbours.is_some();
     for &t in &picked {
         let (r, i) = plan.pos[t];
-        plan.apply(model, &Move::Remove { r, i }, scratch);
+        let mv = Move::Remove { r, i };
+        if granular {
+            touched.extend(plan.touched(&mv));
+        }
+        plan.apply(model, &mv, scratch);
     }
     picked.shuffle(rng);
-    insert_all(model, plan, &picked, scratch);
+    if granular {
+        insert_near(model, plan, &picked, scratch, &mut touched);
+    } else {
+        insert_all(model, plan, &picked, scratch);
+    }
+    touched
+}
+
+/// `seed` and the `q - 1` tasks found first by a breadth-first walk over the near tasks
+/// (granular models: the cost does not grow with the number of tasks).
+fn related_near(model: &Model, seed: usize, q: usize) -> Vec<usize> {
+    let near = model.neighbours.as_ref().expect("a granular model");
+    let mut out = vec![seed];
+    let mut k = 0;
+    while out.len() < q && k < out.len() {
+        for u in near.of(out[k]) {
+            if out.len() < q && !out.contains(&u) {
+                out.push(u);
+            }
+        }
+        k += 1;
+    }
+    out
 }
 
 /// `seed` and the `q - 1` tasks closest to it (round trip, fastest robot

@@ -1,25 +1,49 @@
 //! Iterated local search: independent seeded restarts, each a chain of
 //! ruin-and-recreate perturbations followed by local search.
 
+use std::time::Instant;
+
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use super::construct::{initial_order, insert_all, ruin_recreate};
+use super::granular::{self, Active};
 use super::local_search::local_search;
 use super::model::Model;
 use super::plan::{Plan, Scratch};
 use super::SequencerOptions;
 
-/// The best plan over `opts.restarts` restarts; restart 0 starts from
-/// `start` when given. Ties go to the lowest restart index, so the result
-/// does not depend on how the threads ran.
-pub(super) fn search(model: &Model, opts: &SequencerOptions, start: Option<Plan>) -> Plan {
+/// Where the restarts begin.
+pub(super) enum Start {
+    /// From their own construction; restart 0 from this plan when given.
+    Fresh(Option<Plan>),
+    /// Every restart from this plan (a warm start after travel times changed).
+    All(Plan),
+}
+
+/// A granular search makes this many times `iterations` rounds per restart: its rounds cost
+/// what the perturbation touched, not the whole plan.
+const GRANULAR_ROUNDS: usize = 10;
+
+/// The best plan over `opts.restarts` restarts. Ties go to the lowest restart index, so the
+/// result does not depend on how the threads ran. `on_best` hears every makespan that
+/// improves a restart's best, from any thread.
+pub(super) fn search(
+    model: &Model,
+    opts: &SequencerOptions,
+    start: Start,
+    on_best: &(dyn Fn(f64) + Sync),
+) -> Plan {
     let plans: Vec<Plan> = (0..opts.restarts.max(1))
         .into_par_iter()
         .map(|k| {
-            let first = if k == 0 { start.clone() } else { None };
-            restart(model, opts, k, first)
+            let first = match &start {
+                Start::Fresh(plan) if k == 0 => plan.clone(),
+                Start::Fresh(_) => None,
+                Start::All(plan) => Some(plan.clone()),
+            };
+            restart(model, opts, k, first, on_best)
         })
         .collect();
     let mut best: Option<Plan> = None;
@@ -38,7 +62,32 @@ pub(super) fn search(model: &Model, opts: &SequencerOptions, start: Option<Plan>
 /// How much longer than the best makespan an accepted plan may be.
 const RECORD_SLACK: f64 = 0.02;
 
-fn restart(model: &Model, opts: &SequencerOptions, k: usize, start: Option<Plan>) -> Plan {
+/// A descent: the full neighbourhoods, or the granular ones from the `touched` nodes (all
+/// tasks when `None`).
+fn descend(model: &Model, plan: &mut Plan, scratch: &mut Scratch, touched: Option<&[usize]>) {
+    if model.neighbours.is_none() {
+        return local_search(model, plan, scratch);
+    }
+    let mut active = match touched {
+        None => Active::all(model),
+        Some(nodes) => {
+            let mut active = Active::none(model);
+            for &node in nodes {
+                active.push_node(node);
+            }
+            active
+        }
+    };
+    granular::local_search(model, plan, scratch, &mut active);
+}
+
+fn restart(
+    model: &Model,
+    opts: &SequencerOptions,
+    k: usize,
+    start: Option<Plan>,
+    on_best: &(dyn Fn(f64) + Sync),
+) -> Plan {
     // One stream of the seed per restart: restarts are independent of each other.
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     rng.set_stream(k as u64);
@@ -49,21 +98,29 @@ fn restart(model: &Model, opts: &SequencerOptions, k: usize, start: Option<Plan>
         insert_all(model, &mut plan, &order, &mut scratch);
         plan
     });
-    local_search(model, &mut current, &mut scratch);
+    descend(model, &mut current, &mut scratch, None);
     let mut best = current.clone();
-    // Counted in rounds, not time, so that the result stays deterministic.
-    let patience = (opts.iterations / 4).max(1);
+    on_best(best.obj().makespan);
+    let rounds = if model.neighbours.is_some() {
+        opts.iterations * GRANULAR_ROUNDS
+    } else {
+        opts.iterations
+    };
+    // Counted in rounds, not time, so that the result stays deterministic (a deadline, when
+    // given, ends the search early).
+    let patience = (rounds / 4).max(1);
     let mut since = 0;
-    for _ in 0..opts.iterations {
-        if since == patience {
+    for _ in 0..rounds {
+        if since == patience || opts.deadline.is_some_and(|d| Instant::now() >= d) {
             break;
         }
         since += 1;
         let mut candidate = current.clone();
-        ruin_recreate(model, &mut candidate, &mut rng, &mut scratch);
-        local_search(model, &mut candidate, &mut scratch);
+        let touched = ruin_recreate(model, &mut candidate, &mut rng, &mut scratch);
+        descend(model, &mut candidate, &mut scratch, Some(&touched));
         if candidate.obj().better(&best.obj()) {
             best = candidate.clone();
+            on_best(best.obj().makespan);
             since = 0;
         }
         // Record-to-record travel: plans a little worse than the best are

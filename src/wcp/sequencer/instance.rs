@@ -1,6 +1,25 @@
 //! The data of one sequencing problem and the cost of a plan.
 
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::bounds::Bounds;
 use super::SequencerError;
+
+/// Travel times known exactly, per robot: `(from, to)` to the time (infinite: no move).
+pub type ExactArcs = Vec<HashMap<(usize, usize), f64>>;
+
+/// Where an instance's travel times come from.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Travel {
+    /// Per robot, `(tasks + 1)²` travel times in row-major order (from, to).
+    Dense(Vec<Vec<f64>>),
+    /// Exact times where known, lower bounds elsewhere.
+    Bounded {
+        bounds: Arc<Bounds>,
+        exact: Arc<ExactArcs>,
+    },
+}
 
 /// Robots, tasks, who may do what and the travel times.
 ///
@@ -15,8 +34,7 @@ pub struct Instance {
     pub duration: Vec<f64>,
     /// `allowed[r][t]`: robot `r` may do task `t`.
     pub allowed: Vec<Vec<bool>>,
-    /// Per robot, `(tasks + 1)²` travel times in row-major order (from, to).
-    travel: Vec<Vec<f64>>,
+    pub(super) travel: Travel,
 }
 
 impl Instance {
@@ -34,18 +52,18 @@ impl Instance {
             tasks: duration.len(),
             duration,
             allowed,
-            travel,
+            travel: Travel::Dense(Vec::new()),
         };
         inst.check()?;
         let n1 = inst.tasks + 1;
-        if inst.travel.len() != inst.robots {
+        if travel.len() != inst.robots {
             return Err(bad(format!(
                 "{} travel matrices for {} robots",
-                inst.travel.len(),
+                travel.len(),
                 inst.robots
             )));
         }
-        for (r, m) in inst.travel.iter().enumerate() {
+        for (r, m) in travel.iter().enumerate() {
             if m.len() != n1 * n1 {
                 return Err(bad(format!(
                     "robot {r}: {} travel times, not {}",
@@ -60,7 +78,72 @@ impl Instance {
                 }
             }
         }
-        Ok(inst)
+        Ok(Instance {
+            travel: Travel::Dense(travel),
+            ..inst
+        })
+    }
+
+    /// An instance whose travel times are `exact` where it holds them (infinite: no move)
+    /// and the lower bounds of `bounds` elsewhere. Nothing is stored per pair of nodes.
+    pub fn bounded(
+        duration: Vec<f64>,
+        allowed: Vec<Vec<bool>>,
+        bounds: Arc<Bounds>,
+        exact: Arc<ExactArcs>,
+    ) -> Result<Self, SequencerError> {
+        let inst = Instance {
+            robots: allowed.len(),
+            tasks: duration.len(),
+            duration,
+            allowed,
+            travel: Travel::Dense(Vec::new()),
+        };
+        inst.check()?;
+        if bounds.robots() != inst.robots || bounds.tasks() != inst.tasks {
+            return Err(bad(format!(
+                "bounds for {} robots and {} tasks, not {} and {}",
+                bounds.robots(),
+                bounds.tasks(),
+                inst.robots,
+                inst.tasks
+            )));
+        }
+        if exact.len() != inst.robots {
+            return Err(bad(format!(
+                "{} exact tables for {} robots",
+                exact.len(),
+                inst.robots
+            )));
+        }
+        for (r, arcs) in exact.iter().enumerate() {
+            for (&(from, to), &v) in arcs {
+                if from > inst.tasks || to > inst.tasks || v.is_nan() || v < 0.0 {
+                    return Err(bad(format!("robot {r}: travel {from} -> {to} is {v}")));
+                }
+            }
+        }
+        Ok(Instance {
+            travel: Travel::Bounded { bounds, exact },
+            ..inst
+        })
+    }
+
+    /// The lower bounds of a bounded instance.
+    pub fn bounds(&self) -> Option<&Bounds> {
+        match &self.travel {
+            Travel::Dense(_) => None,
+            Travel::Bounded { bounds, .. } => Some(bounds),
+        }
+    }
+
+    /// Whether the travel time of robot `r` from `from` to `to` is exact (always, unless
+    /// the instance is bounded and does not hold it).
+    pub fn is_exact(&self, r: usize, from: usize, to: usize) -> bool {
+        match &self.travel {
+            Travel::Dense(_) => true,
+            Travel::Bounded { exact, .. } => from == to || exact[r].contains_key(&(from, to)),
+        }
     }
 
     /// Builds the matrices from `travel(robot, from_node, to_node)`.
@@ -76,9 +159,17 @@ impl Instance {
         Instance::new(duration, allowed, matrices)
     }
 
-    /// Travel time of robot `r` from node `from` to node `to`.
+    /// Travel time of robot `r` from node `from` to node `to` (a lower bound where a
+    /// bounded instance does not know it).
     pub fn travel(&self, r: usize, from: usize, to: usize) -> f64 {
-        self.travel[r][from * (self.tasks + 1) + to]
+        match &self.travel {
+            Travel::Dense(m) => m[r][from * (self.tasks + 1) + to],
+            Travel::Bounded { bounds, exact } => match exact[r].get(&(from, to)) {
+                Some(&v) => v,
+                None if from == to => 0.0,
+                None => bounds.bound(r, from, to),
+            },
+        }
     }
 
     /// Time robot `r` needs to do the tasks of `seq` in order and come back

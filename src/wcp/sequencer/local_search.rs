@@ -24,20 +24,20 @@ pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch
 }
 
 /// The best of the moves offered from one anchor, if it beats the plan.
-struct Pick {
+pub(super) struct Pick {
     bar: Obj,
-    best: Option<Move>,
+    pub best: Option<Move>,
 }
 
 impl Pick {
-    fn new(plan: &Plan) -> Pick {
+    pub fn new(plan: &Plan) -> Pick {
         Pick {
             bar: plan.obj(),
             best: None,
         }
     }
 
-    fn offer(
+    pub fn offer(
         &mut self,
         model: &Model,
         plan: &Plan,
@@ -266,15 +266,24 @@ mod tests {
     /// caches are checked after each descent and perturbation.
     #[test]
     fn deltas_and_caches_match_recomputation() {
+        let mut used = 0;
         for seed in 0..24u64 {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let (robots, tasks) = (1 + seed as usize % 3, 4 + seed as usize % 9);
-            let allowed = (0..robots)
-                .map(|_| (0..tasks).map(|_| rng.random_bool(0.7)).collect())
+            // Every task allowed to some robot whose moves from and to home exist, so that
+            // every seed gives a usable model (none is skipped).
+            let allowed: Vec<Vec<bool>> = (0..robots)
+                .map(|r| {
+                    (0..tasks)
+                        .map(|t| t % robots == r || rng.random_bool(0.7))
+                        .collect()
+                })
                 .collect();
             let duration = (0..tasks).map(|_| rng.random_range(0.0..2.0)).collect();
-            let inst = Instance::from_fn(duration, allowed, |_, _, _| {
-                if rng.random_bool(0.05) {
+            let inst = Instance::from_fn(duration, allowed, |r, a, b| {
+                let home_arc = (a == 0 && (b + robots - 1) % robots == r % robots)
+                    || (b == 0 && (a + robots - 1) % robots == r % robots);
+                if !home_arc && rng.random_bool(0.05) {
                     f64::INFINITY
                 } else {
                     rng.random_range(1.0..10.0)
@@ -293,9 +302,8 @@ mod tests {
                     ),
                 })
                 .collect();
-            let Ok(model) = Model::new(&inst, &conflicts) else {
-                continue;
-            };
+            let model = Model::new(&inst, &conflicts).expect("every task has a capable robot");
+            used += 1;
             let mut scratch = Scratch::default();
             let mut plan = Plan::empty(&model);
             let order: Vec<usize> = (0..tasks).collect();
@@ -305,6 +313,65 @@ mod tests {
                 local_search(&model, &mut plan, &mut scratch);
                 plan.assert_consistent(&model);
                 ruin_recreate(&model, &mut plan, &mut rng, &mut scratch);
+                plan.assert_consistent(&model);
+            }
+        }
+        assert_eq!(used, 24, "every seed is checked");
+    }
+}
+
+#[cfg(test)]
+mod granular_tests {
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use crate::wcp::sequencer::construct::{insert_all, ruin_recreate};
+    use crate::wcp::sequencer::granular::{local_search, Active};
+    use crate::wcp::sequencer::model::{Model, GRANULAR_FROM_TASKS};
+    use crate::wcp::sequencer::plan::{Plan, Scratch};
+    use crate::wcp::sequencer::Instance;
+
+    /// The granular moves' O(1) times are checked by `Pick::offer` as the full ones are, and
+    /// the plan's caches after each descent and perturbation.
+    #[test]
+    fn granular_deltas_and_caches_match_recomputation() {
+        for seed in 0..2u64 {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let (robots, tasks) = (3, GRANULAR_FROM_TASKS);
+            let pos: Vec<(f64, f64)> = (0..=tasks)
+                .map(|_| (rng.random_range(0.0..30.0), rng.random_range(0.0..30.0)))
+                .collect();
+            let allowed = (0..robots)
+                .map(|r| {
+                    (0..tasks)
+                        .map(|t| t % robots == r || rng.random_bool(0.5))
+                        .collect()
+                })
+                .collect();
+            let duration = (0..tasks).map(|_| rng.random_range(0.0..2.0)).collect();
+            // Asymmetric: slower going up.
+            let inst = Instance::from_fn(duration, allowed, |r, a, b| {
+                let (p, q) = (pos[a], pos[b]);
+                let d = (p.0 - q.0).hypot(p.1 - q.1);
+                d * (1.0 + 0.1 * r as f64) + 0.2 * (q.1 - p.1).max(0.0)
+            })
+            .unwrap();
+            let model = Model::new(&inst, &[]).unwrap();
+            assert!(model.neighbours.is_some());
+            let mut scratch = Scratch::default();
+            let mut plan = Plan::empty(&model);
+            let order: Vec<usize> = (0..tasks).collect();
+            insert_all(&model, &mut plan, &order, &mut scratch);
+            local_search(&model, &mut plan, &mut scratch, &mut Active::all(&model));
+            plan.assert_consistent(&model);
+            for _ in 0..3 {
+                let touched = ruin_recreate(&model, &mut plan, &mut rng, &mut scratch);
+                plan.assert_consistent(&model);
+                let mut active = Active::none(&model);
+                for node in touched {
+                    active.push_node(node);
+                }
+                local_search(&model, &mut plan, &mut scratch, &mut active);
                 plan.assert_consistent(&model);
             }
         }

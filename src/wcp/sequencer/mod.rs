@@ -16,9 +16,15 @@
 //! small ones whose optimum violates a conflict, go to an iterated local
 //! search: cheapest insertion, then descents (relocate and or-opt within and
 //! between routes, swap, 2-opt) alternating with seeded ruin-and-recreate
-//! perturbations, over independent restarts run in parallel. The result
-//! depends only on the input and the seed: no clock, no thread timing, no
-//! hash order.
+//! perturbations, over independent restarts run in parallel. From
+//! [`GRANULAR_FROM_TASKS`] tasks on, the descents are granular: each task is
+//! only moved next to its nearest tasks, and only what a change touched is
+//! looked at again. The result depends only on the input and the seed: no
+//! clock, no thread timing, no hash order (unless a deadline ends the search).
+//!
+//! Travel times come from matrices ([`Instance::new`]) or, for large cells,
+//! from lower bounds with the exact times known so far
+//! ([`Instance::bounded`]): nothing is then stored per pair of nodes.
 //!
 //! ```
 //! use workcell::wcp::sequencer::{solve, Instance, SequencerOptions};
@@ -33,8 +39,10 @@
 //! assert!(sol.optimal);
 //! ```
 
+mod bounds;
 mod construct;
 mod exact;
+mod granular;
 mod ils;
 mod instance;
 mod local_search;
@@ -42,8 +50,11 @@ mod model;
 mod plan;
 
 use std::collections::HashSet;
+use std::time::Instant;
 
-pub use instance::Instance;
+pub use bounds::{BoundLimits, Bounds};
+pub use instance::{ExactArcs, Instance};
+pub use model::GRANULAR_FROM_TASKS;
 
 /// One thing a robot does on its route, in the node indices of [`Instance`]
 /// (0 = the robot's home, `1 + t` = task `t`).
@@ -87,6 +98,9 @@ pub struct SequencerOptions {
     pub iterations: usize,
     /// Largest estimated work (elementary DP updates) for the exact search; 0 disables it.
     pub exact_limit: u64,
+    /// When given, the local search stops at this instant and returns the best plan found so
+    /// far (the result then depends on the machine's speed).
+    pub deadline: Option<Instant>,
 }
 
 impl Default for SequencerOptions {
@@ -99,6 +113,7 @@ impl Default for SequencerOptions {
             restarts: 4,
             iterations: 400,
             exact_limit: 10_000_000,
+            deadline: None,
         }
     }
 }
@@ -188,6 +203,20 @@ pub fn solve(
     conflicts: &[Conflict],
     opts: &SequencerOptions,
 ) -> Result<Solution, SequencerError> {
+    solve_from(inst, conflicts, opts, None, &|_| {})
+}
+
+/// As [`solve`]; when the exact search does not settle it, every restart of the local search
+/// starts from `start` (one route per robot, as [`Solution::sequences`]) when given.
+/// `on_best` hears each makespan that improves a restart's best (from any thread; infinite
+/// travel times count as a large penalty there).
+pub fn solve_from(
+    inst: &Instance,
+    conflicts: &[Conflict],
+    opts: &SequencerOptions,
+    start: Option<&[Vec<usize>]>,
+    on_best: &(dyn Fn(f64) + Sync),
+) -> Result<Solution, SequencerError> {
     inst.check()?;
     check_conflicts(inst, conflicts)?;
     let model = model::Model::new(inst, conflicts)?;
@@ -202,36 +231,15 @@ pub fn solve(
         }
     }
     // The blind optimum seeds the search: it is often one repair away.
-    let start = exact.map(|seqs| plan::Plan::from_sequences(&model, &seqs));
-    let best = ils::search(&model, opts, start);
-    finish(inst, conflicts, best.sequences(), false)
-}
-
-/// Re-plans `start` (one route per robot) for `conflicts`: as [`solve`] where the exact
-/// search applies, otherwise one chain of the iterated local search seeded with `start`
-/// (repairing a plan that violates a new conflict rather than planning anew: the feedback
-/// loop re-sequences many times, and each plan it departs from was searched in full).
-pub fn repair(
-    inst: &Instance,
-    conflicts: &[Conflict],
-    start: &[Vec<usize>],
-    opts: &SequencerOptions,
-) -> Result<Solution, SequencerError> {
-    inst.check()?;
-    check_conflicts(inst, conflicts)?;
-    let model = model::Model::new(inst, conflicts)?;
-    if exact::work(&model) <= opts.exact_limit as f64 {
-        return solve(inst, conflicts, opts);
-    }
-    let seeded = SequencerOptions {
-        restarts: 1,
-        ..opts.clone()
+    let start = match (exact, start) {
+        (Some(seqs), _) => ils::Start::Fresh(Some(plan::Plan::from_sequences(&model, &seqs))),
+        (None, Some(seqs)) => {
+            check_start(inst, &model, seqs)?;
+            ils::Start::All(plan::Plan::from_sequences(&model, seqs))
+        }
+        (None, None) => ils::Start::Fresh(None),
     };
-    let best = ils::search(
-        &model,
-        &seeded,
-        Some(plan::Plan::from_sequences(&model, start)),
-    );
+    let best = ils::search(&model, opts, start, on_best);
     finish(inst, conflicts, best.sequences(), false)
 }
 
@@ -252,6 +260,31 @@ fn finish(
         sequences,
         optimal,
     })
+}
+
+/// A start must give every task once to a robot able to do it.
+fn check_start(
+    inst: &Instance,
+    model: &model::Model,
+    seqs: &[Vec<usize>],
+) -> Result<(), SequencerError> {
+    let mut seen = vec![false; inst.tasks];
+    let bad = |msg: String| Err(SequencerError::BadInstance(format!("start: {msg}")));
+    if seqs.len() != inst.robots {
+        return bad(format!("{} routes for {} robots", seqs.len(), inst.robots));
+    }
+    for (r, seq) in seqs.iter().enumerate() {
+        for &t in seq {
+            if t >= inst.tasks || seen[t] || !model.can(r, t) {
+                return bad(format!("robot {r} cannot take task {t}"));
+            }
+            seen[t] = true;
+        }
+    }
+    match seen.iter().position(|s| !s) {
+        Some(t) => bad(format!("task {t} has no robot")),
+        None => Ok(()),
+    }
 }
 
 fn check_conflicts(inst: &Instance, conflicts: &[Conflict]) -> Result<(), SequencerError> {

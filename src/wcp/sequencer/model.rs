@@ -2,8 +2,60 @@
 //! penalised travel times and an index of the conflicts.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+use super::bounds::Bounds;
+use super::instance::Travel;
 use super::{Conflict, Instance, SequencerError, Step};
+
+/// Largest number of stored arcs (robots × nodes²) for a dense cost matrix (8 bytes each);
+/// larger instances compute their lower bounds when asked and store only the exact arcs.
+const DENSE_MAX_ARCS: usize = 1 << 24;
+/// From this many tasks on, the local search looks only at each task's nearest tasks
+/// (granular neighbourhoods) and re-examines only what a change touched.
+pub const GRANULAR_FROM_TASKS: usize = 200;
+/// Nearest tasks per task in a granular neighbourhood.
+const NEIGHBOURS: usize = 8;
+/// Robots per task (those with the nearest homes) whose routes' ends a granular search tries.
+const HOME_CANDIDATES: usize = 4;
+
+/// Travel costs: a matrix, or lower bounds computed when asked plus the exact arcs.
+enum Costs {
+    /// `[r][from][to]`.
+    Dense(Vec<f64>),
+    /// Bounds, and the exact arcs keyed `(r · n1 + from) · n1 + to` (penalised).
+    Lazy {
+        bounds: Arc<Bounds>,
+        exact: FxHashMap<u64, f64>,
+        /// The costs between each task and its near tasks (granular models), computed once:
+        /// `[((r · tasks + t) · NEIGHBOURS + k) · 2]` from t to its k-th near task, `+ 1`
+        /// back. Nearly every cost a granular search asks for is one of these.
+        near: Vec<f64>,
+    },
+}
+
+/// The nearest tasks of every task, and the robots whose homes are nearest to it.
+pub(super) struct Neighbours {
+    /// `[t * NEIGHBOURS + k]`: the k-th nearest task of t (fewer when there are fewer tasks;
+    /// `usize::MAX` pads).
+    near: Vec<usize>,
+    /// Per task, the capable robots whose home is nearest, nearest first.
+    pub homes: Vec<Vec<usize>>,
+}
+
+impl Neighbours {
+    /// The nearest tasks of task `t`, nearest first.
+    #[inline]
+    pub fn of(&self, t: usize) -> impl Iterator<Item = usize> + '_ {
+        self.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS]
+            .iter()
+            .copied()
+            .take_while(|&u| u != usize::MAX)
+    }
+}
 
 /// Read-only data shared by every restart.
 pub(super) struct Model {
@@ -11,8 +63,8 @@ pub(super) struct Model {
     pub tasks: usize,
     /// Nodes per robot: home and the tasks.
     pub n1: usize,
-    /// `[r][from][to]`; infinite arcs cost `penalty`, home → home costs 0.
-    cost: Vec<f64>,
+    /// Infinite arcs cost `penalty`, home → home costs 0.
+    cost: Costs,
     /// Duration of staying at each node (0 at home).
     pub dn: Vec<f64>,
     /// `[r * tasks + t]`: allowed, and reachable from home and back with finite arcs.
@@ -20,6 +72,8 @@ pub(super) struct Model {
     /// Per task, the capable robots in increasing order.
     pub capable_robots: Vec<Vec<usize>>,
     pub conflicts: Option<ConflictIndex>,
+    /// Granular neighbourhoods, from [`GRANULAR_FROM_TASKS`] tasks on.
+    pub neighbours: Option<Neighbours>,
 }
 
 /// Conflicts keyed by (robot, step id), see [`Model::step_id`].
@@ -97,7 +151,19 @@ impl Model {
     pub fn new(inst: &Instance, conflicts: &[Conflict]) -> Result<Model, SequencerError> {
         let (robots, tasks, n1) = (inst.robots, inst.tasks, inst.tasks + 1);
         let mut capable = vec![false; robots * tasks];
+        let bounded = matches!(inst.travel, Travel::Bounded { .. });
         for r in 0..robots {
+            if bounded {
+                // Unknown arcs are finite as far as anyone knows: a task is within reach
+                // unless its moves from and to home are known to fail (every task's are
+                // planned before sequencing).
+                for t in 0..tasks {
+                    capable[r * tasks + t] = inst.allowed[r][t]
+                        && inst.travel(r, 0, t + 1).is_finite()
+                        && inst.travel(r, t + 1, 0).is_finite();
+                }
+                continue;
+            }
             let there = reachable(inst, r, true);
             let back = reachable(inst, r, false);
             for t in 0..tasks {
@@ -116,29 +182,41 @@ impl Model {
             robots,
             tasks,
             n1,
-            cost: Vec::with_capacity(robots * n1 * n1),
+            cost: Costs::Dense(Vec::new()),
             dn,
             capable,
             capable_robots,
             conflicts: None,
+            neighbours: None,
         };
-        model.fill_costs(inst);
+        model.cost = model.fill_costs(inst);
         if !conflicts.is_empty() {
             model.conflicts = Some(model.index_conflicts(conflicts));
+        }
+        if tasks >= GRANULAR_FROM_TASKS {
+            model.neighbours = Some(model.neighbours(inst));
+            model.cache_near_costs();
         }
         Ok(model)
     }
 
     /// A finite stand-in for infinite arcs, longer than any route without
     /// them: plans that need one still compare, and lose against any other.
-    fn fill_costs(&mut self, inst: &Instance) {
+    fn fill_costs(&self, inst: &Instance) -> Costs {
         let n1 = self.n1;
         let mut longest: f64 = 0.0;
-        for r in 0..self.robots {
-            for a in 0..n1 {
-                for b in 0..n1 {
-                    let v = inst.travel(r, a, b);
-                    if a != b && v.is_finite() {
+        match &inst.travel {
+            Travel::Dense(m) => {
+                for (k, &v) in m.iter().flatten().enumerate() {
+                    if (k / n1) % n1 != k % n1 && v.is_finite() {
+                        longest = longest.max(v);
+                    }
+                }
+            }
+            Travel::Bounded { bounds, exact } => {
+                longest = bounds.longest();
+                for &v in exact.iter().flat_map(|m| m.values()) {
+                    if v.is_finite() {
                         longest = longest.max(v);
                     }
                 }
@@ -150,21 +228,98 @@ impl Model {
             // Absurd scales: keep sums of n1 penalties finite at least.
             penalty = f64::MAX / (4.0 * (n1 as f64 + 1.0));
         }
-        for r in 0..self.robots {
-            for a in 0..n1 {
-                for b in 0..n1 {
-                    let v = inst.travel(r, a, b);
-                    let c = if a == b {
-                        0.0
-                    } else if v.is_finite() {
-                        v
-                    } else {
-                        penalty
-                    };
-                    self.cost.push(c);
+        let finite = |v: f64| if v.is_finite() { v } else { penalty };
+        match &inst.travel {
+            Travel::Bounded { bounds, exact } if self.robots * n1 * n1 > DENSE_MAX_ARCS => {
+                let mut map = FxHashMap::default();
+                for (r, arcs) in exact.iter().enumerate() {
+                    for (&(a, b), &v) in arcs {
+                        if a != b {
+                            map.insert(((r * n1 + a) * n1 + b) as u64, finite(v));
+                        }
+                    }
+                }
+                Costs::Lazy {
+                    bounds: bounds.clone(),
+                    exact: map,
+                    near: Vec::new(),
                 }
             }
+            travel => {
+                let mut cost = vec![0.0; self.robots * n1 * n1];
+                cost.par_chunks_mut(n1 * n1)
+                    .enumerate()
+                    .for_each(|(r, m)| match travel {
+                        Travel::Dense(t) => {
+                            for (k, c) in m.iter_mut().enumerate() {
+                                if k / n1 != k % n1 {
+                                    *c = finite(t[r][k]);
+                                }
+                            }
+                        }
+                        Travel::Bounded { bounds, exact } => {
+                            for (k, c) in m.iter_mut().enumerate() {
+                                if k / n1 != k % n1 {
+                                    *c = bounds.bound(r, k / n1, k % n1);
+                                }
+                            }
+                            for (&(a, b), &v) in &exact[r] {
+                                if a != b {
+                                    m[a * n1 + b] = finite(v);
+                                }
+                            }
+                        }
+                    });
+                Costs::Dense(cost)
+            }
         }
+    }
+
+    /// Each task's nearest tasks (by position when the bounds know them, else by the
+    /// fastest round trip of a robot), ties by index; and its robots by the bound of the
+    /// move from their home.
+    fn neighbours(&self, inst: &Instance) -> Neighbours {
+        let n = self.tasks;
+        let bounds = inst.bounds();
+        let distance = |a: usize, b: usize| match bounds {
+            Some(bounds) => bounds.task_distance(a, b),
+            None => (0..self.robots)
+                .map(|r| self.c(r, a + 1, b + 1) + self.c(r, b + 1, a + 1))
+                .fold(f64::INFINITY, f64::min),
+        };
+        let near: Vec<usize> = (0..n)
+            .into_par_iter()
+            .flat_map_iter(|t| {
+                let mut all: Vec<(f64, usize)> = (0..n)
+                    .filter(|&u| u != t)
+                    .map(|u| (distance(t, u), u))
+                    .collect();
+                let k = NEIGHBOURS.min(all.len());
+                let order =
+                    |x: &(f64, usize), y: &(f64, usize)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
+                if k < all.len() {
+                    all.select_nth_unstable_by(k, order);
+                    all.truncate(k);
+                }
+                all.sort_by(order);
+                let mut row: Vec<usize> = all.into_iter().map(|(_, u)| u).collect();
+                row.resize(NEIGHBOURS, usize::MAX);
+                row
+            })
+            .collect();
+        let homes = (0..n)
+            .map(|t| {
+                let mut rs = self.capable_robots[t].clone();
+                rs.sort_by(|&a, &b| {
+                    self.c(a, 0, t + 1)
+                        .total_cmp(&self.c(b, 0, t + 1))
+                        .then(a.cmp(&b))
+                });
+                rs.truncate(HOME_CANDIDATES);
+                rs
+            })
+            .collect();
+        Neighbours { near, homes }
     }
 
     fn index_conflicts(&self, conflicts: &[Conflict]) -> ConflictIndex {
@@ -222,7 +377,61 @@ impl Model {
 
     #[inline]
     pub fn c(&self, r: usize, a: usize, b: usize) -> f64 {
-        self.cost[(r * self.n1 + a) * self.n1 + b]
+        let k = (r * self.n1 + a) * self.n1 + b;
+        match &self.cost {
+            Costs::Dense(m) => m[k],
+            Costs::Lazy {
+                bounds,
+                exact,
+                near,
+            } => {
+                if a == b {
+                    return 0.0;
+                }
+                if let (false, Some(nb)) = (near.is_empty() || a == 0 || b == 0, &self.neighbours) {
+                    let row = |t: usize| &nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS];
+                    let base = |t: usize| (r * self.tasks + t) * NEIGHBOURS;
+                    if let Some(j) = row(a - 1).iter().position(|&u| u == b - 1) {
+                        return near[(base(a - 1) + j) * 2];
+                    }
+                    if let Some(j) = row(b - 1).iter().position(|&u| u == a - 1) {
+                        return near[(base(b - 1) + j) * 2 + 1];
+                    }
+                }
+                match exact.get(&(k as u64)) {
+                    Some(&v) => v,
+                    None => bounds.bound(r, a, b),
+                }
+            }
+        }
+    }
+
+    /// Fills the near-cost cache of lazy costs (see [`Costs::Lazy`]).
+    fn cache_near_costs(&mut self) {
+        let (Costs::Lazy { .. }, Some(nb)) = (&self.cost, &self.neighbours) else {
+            return;
+        };
+        let mut cache = vec![f64::NAN; self.robots * self.tasks * NEIGHBOURS * 2];
+        cache
+            .par_chunks_mut(self.tasks * NEIGHBOURS * 2)
+            .enumerate()
+            .for_each(|(r, row)| {
+                for t in 0..self.tasks {
+                    for (j, &u) in nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS]
+                        .iter()
+                        .enumerate()
+                    {
+                        if u != usize::MAX {
+                            let k = (t * NEIGHBOURS + j) * 2;
+                            row[k] = self.c(r, t + 1, u + 1);
+                            row[k + 1] = self.c(r, u + 1, t + 1);
+                        }
+                    }
+                }
+            });
+        if let Costs::Lazy { near, .. } = &mut self.cost {
+            *near = cache;
+        }
     }
 
     #[inline]
@@ -269,4 +478,70 @@ fn reachable(inst: &Instance, r: usize, forward: bool) -> Vec<bool> {
         }
     }
     seen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Vec2;
+    use crate::wcp::sequencer::{BoundLimits, Bounds, ExactArcs};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Lazy costs (too many arcs for a matrix) with the near-cost cache give the instance's
+    /// travel times: exact ones where known, bounds elsewhere.
+    #[test]
+    fn lazy_costs_are_the_instance_travel_times() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let (robots, tasks) = (5, 2000);
+        assert!(robots * (tasks + 1) * (tasks + 1) > DENSE_MAX_ARCS);
+        let mut pose = || {
+            (
+                Vec2::new(rng.random_range(0.0..100.0), rng.random_range(0.0..80.0)),
+                rng.random_range(-3.0..3.0),
+            )
+        };
+        let homes = (0..robots).map(|_| pose()).collect();
+        let task_poses = (0..tasks).map(|_| pose()).collect();
+        let limits = (0..robots)
+            .map(|r| BoundLimits {
+                max_speed: 1.0 + r as f64 * 0.1,
+                max_accel: 2.0,
+                max_angular_accel: 4.0,
+                max_turn_rate: 1.5,
+            })
+            .collect();
+        let bounds = Arc::new(Bounds::new(limits, homes, task_poses));
+        let mut exact: ExactArcs = vec![Default::default(); robots];
+        let mut arcs = Vec::new();
+        for _ in 0..20_000 {
+            let (r, a, b) = (
+                rng.random_range(0..robots),
+                rng.random_range(0..=tasks),
+                rng.random_range(0..=tasks),
+            );
+            arcs.push((r, a, b));
+            if rng.random_bool(0.3) && a != b {
+                exact[r].insert((a, b), bounds.bound(r, a, b) * 1.5);
+            }
+        }
+        let allowed = vec![vec![true; tasks]; robots];
+        let inst = Instance::bounded(vec![1.0; tasks], allowed, bounds, Arc::new(exact)).unwrap();
+        let model = Model::new(&inst, &[]).unwrap();
+        assert!(matches!(model.cost, Costs::Lazy { ref near, .. } if !near.is_empty()));
+        let nb = model.neighbours.as_ref().unwrap();
+        for t in 0..50 {
+            for u in nb.of(t) {
+                arcs.push((t % robots, t + 1, u + 1));
+                arcs.push((t % robots, u + 1, t + 1));
+            }
+        }
+        for (r, a, b) in arcs {
+            assert_eq!(
+                model.c(r, a, b),
+                inst.travel(r, a, b),
+                "robot {r} {a} -> {b}"
+            );
+        }
+    }
 }

@@ -285,6 +285,47 @@ impl Plan {
         }
     }
 
+    /// The nodes whose arcs `mv` changes (the ends of every arc it removes or adds), in the
+    /// plan as it is before the move; homes (0) included.
+    pub fn touched(&self, mv: &Move) -> Vec<usize> {
+        let at = |r: usize, k: usize| self.routes[r][k];
+        match *mv {
+            Move::Insert { t, r, gap } => vec![t + 1, at(r, gap), at(r, gap + 1)],
+            Move::Remove { r, i } => vec![at(r, i - 1), at(r, i), at(r, i + 1)],
+            Move::Shift {
+                r1,
+                i,
+                len,
+                r2,
+                gap,
+                ..
+            } => {
+                let mut out = vec![
+                    at(r1, i - 1),
+                    at(r1, i),
+                    at(r1, i + len - 1),
+                    at(r1, i + len),
+                ];
+                if r1 == r2 {
+                    let node = |k: usize| if k < i { at(r1, k) } else { at(r1, k + len) };
+                    out.extend([node(gap), node(gap + 1)]);
+                } else {
+                    out.extend([at(r2, gap), at(r2, gap + 1)]);
+                }
+                out
+            }
+            Move::Swap { r1, i, r2, j } => vec![
+                at(r1, i - 1),
+                at(r1, i),
+                at(r1, i + 1),
+                at(r2, j - 1),
+                at(r2, j),
+                at(r2, j + 1),
+            ],
+            Move::Reverse { r, i, j } => vec![at(r, i - 1), at(r, i), at(r, j), at(r, j + 1)],
+        }
+    }
+
     /// Violated conflicts once `mv` is made: only conflicts naming a step
     /// that some touched route gains or loses can change.
     pub fn viol_after(&self, model: &Model, mv: &Move, scratch: &mut Scratch) -> usize {

@@ -1,0 +1,178 @@
+//! Lazy sequencing: the sequencer works on lower bounds of the moves not planned yet, the
+//! moves its plan uses are then planned and certified, and it runs again on what it learnt
+//! until every move of its plan is exact.
+//!
+//! Each round costs the plan's moves that were still bounds: far fewer than every pair of
+//! nodes. Bounds never exceed the planned times, so a plan all of whose moves are exact is
+//! also a local optimum (an optimum, when the exact search solved it) of the fully planned
+//! problem: every alternative it rejected only gets longer once planned.
+//!
+//! The rounds stop when the plan's moves were all exact already (or their bounds were their
+//! times), when planning them left its makespan as the search saw it, when
+//! [`STALL_ROUNDS`] rounds in a row found no better certified plan (not for the exact
+//! search, which converges), or when the time limit is out; the best certified plan of all
+//! rounds is returned.
+//!
+//! A call starts from the moves of [`Prepared::known`] and learns only from the moves its own
+//! rounds plan (the store plans each move once for everyone): its result never depends on
+//! what other calls, in other threads, planned before it.
+
+use super::feedback::{sequencer_error, Prepared, Progress, SolveOptions};
+use super::sequencer::{self, steps, ExactArcs, Instance, Solution, Step};
+use crate::cell::{Cell, InputError};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Later rounds search this many times less than the first.
+const WARM_ROUND_SHARE: usize = 8;
+/// A plan whose makespan, once its moves are exact, is within this relative amount of what
+/// the search saw is settled: the moves that changed do not lie on its longest route.
+const SETTLED_TOL: f64 = 1e-12;
+/// Rounds in a row without a better certified plan after which the best one is kept.
+const STALL_ROUNDS: usize = 3;
+
+/// The plan of the sequencer for `conflicts` (see [`sequencer::solve`]), every move of it
+/// planned and certified, its makespan computed on them. With a time limit the best such
+/// plan found when it runs out (the round under way still plans its moves, so that there is
+/// one).
+pub fn sequence(
+    cell: &Cell,
+    prepared: &Prepared,
+    conflicts: &[sequencer::Conflict],
+    opts: &SolveOptions,
+) -> Result<Solution, InputError> {
+    sequence_with(cell, prepared, conflicts, opts, None, &())
+}
+
+/// As [`sequence`]; the local search starts from `start` (one route per robot) when given,
+/// and `progress` hears the rounds and the makespans found.
+pub fn sequence_with(
+    cell: &Cell,
+    prepared: &Prepared,
+    conflicts: &[sequencer::Conflict],
+    opts: &SolveOptions,
+    start: Option<&[Vec<usize>]>,
+    progress: &dyn Progress,
+) -> Result<Solution, InputError> {
+    let duration: Vec<f64> = cell.tasks.iter().map(|t| t.duration).collect();
+    let allowed: Vec<Vec<bool>> = (0..cell.robots.len())
+        .map(|r| cell.tasks.iter().map(|t| t.robots.contains(&r)).collect())
+        .collect();
+    let mut seq_opts = opts.sequencer.clone();
+    seq_opts.deadline = prepared.deadline;
+    let mut known: Arc<ExactArcs> = prepared.known.clone();
+    let mut start: Option<Vec<Vec<usize>>> = start.map(<[_]>::to_vec);
+    let mut best: Option<Solution> = None;
+    let mut stalled = 0;
+    for round in 1.. {
+        progress.sequencing(round);
+        let inst = Instance::bounded(
+            duration.clone(),
+            allowed.clone(),
+            prepared.bounds.clone(),
+            known.clone(),
+        )
+        .map_err(|e| sequencer_error(cell, e))?;
+        let on_best = |m: f64| progress.best(m);
+        let sol =
+            match sequencer::solve_from(&inst, conflicts, &seq_opts, start.as_deref(), &on_best) {
+                Ok(sol) => sol,
+                // A plan through a move that turned out impossible may be the only one the
+                // bounds allowed: with a certified plan in hand, keep it.
+                Err(sequencer::SequencerError::Infeasible) if best.is_some() => break,
+                Err(e) => return Err(sequencer_error(cell, e)),
+            };
+        let missing = bounded_moves(&inst, &sol.sequences);
+        let times = prepared.moves.plan_all(&missing, &|| ());
+        let exact_all = missing
+            .iter()
+            .zip(&times)
+            .all(|(&(r, a, b), &t)| t == inst.travel(r, a, b) && t == inst.travel(r, b, a));
+        let table = Arc::make_mut(&mut known);
+        for (&(r, a, b), &t) in missing.iter().zip(&times) {
+            table[r].insert((a, b), t);
+            table[r].insert((b, a), t);
+        }
+        // Every move of the plan is known now: its true costs.
+        let exact = missing.is_empty() || exact_all;
+        let mut certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), exact);
+        // The makespan the search aimed at is the true one: the moves that changed lie off
+        // the longest route. An optimum on bounds that keeps its makespan once exact is an
+        // optimum: no plan is shorter on the exact times than on their bounds.
+        let settled = certified.violations == sol.violations
+            && certified.makespan <= sol.makespan * (1.0 + SETTLED_TOL);
+        certified.optimal = sol.optimal && (exact || settled);
+        stalled += 1;
+        if certified.makespan.is_finite() {
+            if best.as_ref().is_none_or(|b| better(&certified, b)) {
+                stalled = 0;
+            }
+            // Ties go to the later round: it knows more (and may have proved its plan
+            // optimal).
+            if best.as_ref().is_none_or(|b| !better(b, &certified)) {
+                best = Some(certified);
+            }
+        }
+        let out_of_time = prepared.deadline.is_some_and(|d| Instant::now() >= d);
+        // The exact search converges on its own: every round plans moves it had not.
+        let stalled_out = stalled >= STALL_ROUNDS && !sol.optimal;
+        let stop = exact || settled || out_of_time || stalled_out;
+        if stop && best.is_some() {
+            break;
+        }
+        start = Some(sol.sequences);
+        // Later rounds start from the last plan, on mostly the same times: a shorter search
+        // repairs what the new times changed.
+        seq_opts.iterations = (opts.sequencer.iterations / WARM_ROUND_SHARE).max(1);
+    }
+    best.ok_or_else(|| sequencer_error(cell, sequencer::SequencerError::Infeasible))
+}
+
+/// The moves of `sequences` whose travel time `inst` only bounds, as `(robot, a, b)` with
+/// `a < b`, sorted, each once.
+fn bounded_moves(inst: &Instance, sequences: &[Vec<usize>]) -> Vec<(usize, usize, usize)> {
+    let mut out = Vec::new();
+    for (r, route) in sequences.iter().enumerate() {
+        for step in steps(route) {
+            if let Step::Move { from, to } = step {
+                if !inst.is_exact(r, from, to) {
+                    out.push((r, from.min(to), from.max(to)));
+                }
+            }
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// `sol` costed on the known moves (all of its own are); optimal only if its moves' bounds
+/// were their exact times.
+fn evaluate(
+    prepared: &Prepared,
+    inst: &Instance,
+    known: &Arc<ExactArcs>,
+    conflicts: &[sequencer::Conflict],
+    sol: Solution,
+    exact: bool,
+) -> Solution {
+    let exact_inst = Instance::bounded(
+        inst.duration.clone(),
+        inst.allowed.clone(),
+        prepared.bounds.clone(),
+        known.clone(),
+    )
+    .expect("the same data, with more exact times");
+    Solution {
+        makespan: exact_inst.makespan(&sol.sequences),
+        total: exact_inst.total(&sol.sequences),
+        violations: sequencer::count_violations(conflicts, &sol.sequences),
+        optimal: sol.optimal && exact,
+        sequences: sol.sequences,
+    }
+}
+
+/// Fewer violations, then a smaller makespan, then a smaller total.
+fn better(a: &Solution, b: &Solution) -> bool {
+    (a.violations, a.makespan, a.total) < (b.violations, b.makespan, b.total)
+}
