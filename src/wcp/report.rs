@@ -21,8 +21,13 @@ pub struct ResultJson<'a> {
     /// Each robot's tasks in order, robots in the cell's order.
     #[serde(serialize_with = "ordered_map")]
     pub sequences: Vec<(&'a str, Vec<&'a str>)>,
-    /// Rounds of sequencing, checking and feedback (1 for `evaluate`).
+    /// Rounds of sequencing, checking and feedback (1 for `evaluate`): for the search, the
+    /// rounds on the branch of the answer.
     pub iterations: usize,
+    /// Schedules the checker examined (solve only): the rounds for the greedy loop, every
+    /// node checked for the search.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub schedules_checked: Option<usize>,
     /// Waits of the final schedule, which `evaluate` applies when given this document.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub waits: Vec<WaitJson>,
