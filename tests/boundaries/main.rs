@@ -10,6 +10,7 @@
 
 mod contact_shapes;
 mod input;
+mod long_edges;
 mod scale;
 mod tiny_delta;
 
