@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
-use workcell::cell::{check_precision, load_scene, InputError};
+use workcell::cell::{check_precision, check_time_resolution, load_scene, InputError};
 use workcell::collision::{check, CheckOptions, CheckReport};
 
 /// Runs the check; the exit status is 0 collision-free, 1 collision.
@@ -15,6 +15,8 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
         opts.delta.unwrap_or(loaded.scene.delta),
         path,
     )?;
+    let time_tol = opts.time_tol_for(loaded.scene.horizon());
+    check_time_resolution(&loaded.scene, time_tol, path)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
@@ -109,11 +111,12 @@ fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> S
     out
 }
 
-/// A time for people: nine decimals, or nine significant digits when it is huge.
+/// A time for people: nine decimals, or every digit f64 holds when it is huge (nine
+/// significant digits would hide the time of day in a time stamp of 10¹⁴).
 pub fn time(t: f64) -> String {
     if t.abs() < 1e9 {
         format!("{t:.9}")
     } else {
-        format!("{t:.9e}")
+        format!("{t:e}")
     }
 }

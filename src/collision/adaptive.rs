@@ -43,7 +43,8 @@ fn convexity_bound(l: &Probe, r: &Probe, radii: (f64, f64), feature_tol: f64) ->
 ///
 /// Depth-first, left half first, so the first witness (η < δ, an exact distance) found
 /// after the certified prefix is the earliest contact up to `time_tol`. Returns the witness
-/// and the end of the certified prefix, or `Ok` when the whole interval is certified.
+/// and the end of the certified prefix (as a fraction of the span), or `Ok` when the whole
+/// interval is certified.
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
@@ -69,7 +70,7 @@ pub(super) fn search(
         if r.eta < s.delta {
             // A contact lies in (l, r]: bisect until the interval is within tolerance.
             if (r.u - l.u) * duration <= s.time_tol || resolved {
-                return Err((r, l.t));
+                return Err((r, l.u));
             }
         } else {
             // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)

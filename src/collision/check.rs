@@ -15,6 +15,9 @@ const PARALLEL_MIN_PAIRS: usize = 4;
 /// pair that stays apart (a few disc gaps per merged interval), so it only pays with many.
 const BROAD_PHASE_MIN_PAIRS: usize = 16;
 
+/// The default time tolerance, as a fraction of the horizon's length.
+pub const DEFAULT_TIME_TOL_OVER_HORIZON: f64 = 1e-6;
+
 /// How to check a scene.
 #[derive(Clone, Copy, Debug)]
 pub struct CheckOptions {
@@ -33,6 +36,15 @@ pub struct CheckOptions {
     pub walk: WalkTolerances,
     /// Also report each pair's counters ([`CheckReport::pair_stats`]).
     pub per_pair: bool,
+}
+
+impl CheckOptions {
+    /// The absolute time tolerance used on a scene of this horizon: `time_tol`, else
+    /// [`DEFAULT_TIME_TOL_OVER_HORIZON`] of its length.
+    pub fn time_tol_for(&self, (start, end): (f64, f64)) -> f64 {
+        self.time_tol
+            .unwrap_or(DEFAULT_TIME_TOL_OVER_HORIZON * (end - start))
+    }
 }
 
 impl Default for CheckOptions {
@@ -137,7 +149,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
 fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let horizon = scene.horizon();
     let delta = opts.delta.unwrap_or(scene.delta);
-    let time_tol = opts.time_tol.unwrap_or(1e-6 * (horizon.1 - horizon.0));
+    let time_tol = opts.time_tol_for(horizon);
     let settings = PairSettings {
         delta,
         grazing_tol: opts.grazing_tol * delta,

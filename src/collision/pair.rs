@@ -121,6 +121,46 @@ impl Span {
         }
     }
 
+    /// The time at `u` and the error of that f64 against the exact t0 + u·(t1 − t0), by
+    /// error-free transformations (TwoSum, FMA): positive when the f64 is early.
+    fn time_and_error(&self, u: f64) -> (f64, f64) {
+        let two_sum = |x: f64, y: f64| {
+            let s = x + y;
+            let yy = s - x;
+            (s, (x - (s - yy)) + (y - yy))
+        };
+        let (d, d_err) = two_sum(self.t1, -self.t0);
+        let p = u * d;
+        let p_err = u.mul_add(d, -p);
+        let (t, t_err) = two_sum(self.t0, p);
+        (t, t_err + p_err + u * d_err)
+    }
+
+    /// The least f64 time not before the instant at `u`: a contact reported there is never
+    /// earlier than its witness, even where the time stamps are huge.
+    pub fn time_after(&self, u: f64) -> f64 {
+        match u {
+            0.0 => self.t0,
+            1.0 => self.t1,
+            _ => match self.time_and_error(u) {
+                (t, e) if e > 0.0 => t.next_up(),
+                (t, _) => t,
+            },
+        }
+    }
+
+    /// The greatest f64 time not after the instant at `u`: the end of a certified prefix.
+    pub fn time_before(&self, u: f64) -> f64 {
+        match u {
+            0.0 => self.t0,
+            1.0 => self.t1,
+            _ => match self.time_and_error(u) {
+                (t, e) if e < 0.0 => t.next_down(),
+                (t, _) => t,
+            },
+        }
+    }
+
     pub fn poses(&self, u: f64) -> (Pose, Pose) {
         (lerp(&self.a, u), lerp(&self.b, u))
     }
@@ -190,8 +230,13 @@ pub fn check_pair(
             Method::Sampled { step } => sampled::search(&mut eta, &span, ends, step, s, &mut stats),
             Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
         };
-        if let Err((witness, safe_until)) = searched {
-            return outcome(contact(&witness, k), safe_until, log, stats);
+        if let Err((witness, safe_u)) = searched {
+            // Never report a contact before its witness, nor a prefix beyond what was proven.
+            let witness = Probe {
+                t: span.time_after(witness.u),
+                ..witness
+            };
+            return outcome(contact(&witness, k), span.time_before(safe_u), log, stats);
         }
         left = right;
     }

@@ -5,7 +5,8 @@ use super::pair::{PairSettings, Span};
 use super::Stats;
 
 /// Looks at every time start + k·`step` inside the interval, then at its right end; the
-/// first look closer than δ is the contact. Returns the witness and the previous look.
+/// first look closer than δ is the contact. Returns the witness and the previous look (as a
+/// fraction of the span).
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
@@ -15,7 +16,7 @@ pub(super) fn search(
     stats: &mut Stats,
 ) -> Result<(), (Probe, f64)> {
     let duration = span.t1 - span.t0;
-    let mut last = left.t;
+    let mut last = left.u;
     // The first multiple of `step` after t0; counting in k keeps the looks on one global grid.
     let mut k = ((span.t0 - s.start) / step).floor() + 1.0;
     loop {
@@ -36,7 +37,7 @@ pub(super) fn search(
         if p.eta < s.delta {
             return Err((p, last));
         }
-        last = t;
+        last = u;
     }
     if right.eta < s.delta {
         return Err((right, last));

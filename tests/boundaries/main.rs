@@ -11,6 +11,7 @@
 mod contact_shapes;
 mod input;
 mod long_edges;
+mod precision;
 mod scale;
 mod tiny_delta;
 
