@@ -8,7 +8,7 @@ use crate::motion::BoundKind;
 /// From the free left end, steps forward by (η − δ) / λ', λ' bounding how far the pair can
 /// close in per unit of the interval: the pose is linear on it, so over a fraction u of the
 /// interval no point moves farther than u·λ (rigorous λ). The first look closer than δ is
-/// the contact. Returns the witness and the last free look (as a fraction of the span).
+/// the contact. Returns the witness and the time of the last free look.
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
@@ -35,7 +35,7 @@ pub(super) fn search(
         let u = (at.u + step).max(at.u.next_up());
         if u >= 1.0 {
             return if right.eta < s.delta {
-                Err((right, at.u))
+                Err((right, span.time_before(at.u)))
             } else {
                 Ok(())
             };
@@ -46,7 +46,7 @@ pub(super) fn search(
             ..eta.at(span.time(u), span.poses(u), stats)
         };
         if p.eta < s.delta {
-            return Err((p, at.u));
+            return Err((p, span.time_before(at.u)));
         }
         at = p;
     }

@@ -230,13 +230,13 @@ pub fn check_pair(
             Method::Sampled { step } => sampled::search(&mut eta, &span, ends, step, s, &mut stats),
             Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
         };
-        if let Err((witness, safe_u)) = searched {
-            // Never report a contact before its witness, nor a prefix beyond what was proven.
+        if let Err((witness, safe_until)) = searched {
+            // Never report a contact before its witness.
             let witness = Probe {
                 t: span.time_after(witness.u),
                 ..witness
             };
-            return outcome(contact(&witness, k), span.time_before(safe_u), log, stats);
+            return outcome(contact(&witness, k), safe_until, log, stats);
         }
         left = right;
     }

@@ -5,8 +5,8 @@ use super::pair::{PairSettings, Span};
 use super::Stats;
 
 /// Looks at every time start + k·`step` inside the interval, then at its right end; the
-/// first look closer than δ is the contact. Returns the witness and the previous look (as a
-/// fraction of the span).
+/// first look closer than δ is the contact. Returns the witness and the time of the previous
+/// look.
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
@@ -35,12 +35,12 @@ pub(super) fn search(
             ..eta.at(t, span.poses(u), stats)
         };
         if p.eta < s.delta {
-            return Err((p, last));
+            return Err((p, span.time_before(last)));
         }
         last = u;
     }
     if right.eta < s.delta {
-        return Err((right, last));
+        return Err((right, span.time_before(last)));
     }
     Ok(())
 }
