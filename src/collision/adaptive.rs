@@ -1,7 +1,7 @@
 //! Table 1 of Feyeux & Landry on one merged interval: certify or bisect.
 
 use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span};
+use super::pair::{PairSettings, Span, Stop};
 use super::Stats;
 use crate::motion::BoundKind;
 
@@ -65,7 +65,7 @@ pub(super) fn search(
     s: &PairSettings,
     stack: &mut Vec<(Probe, Probe)>,
     stats: &mut Stats,
-) -> Result<(), (Probe, f64)> {
+) -> Result<(), Stop> {
     search_with(eta, span, ends, bound, s, stack, stats, true)
 }
 
@@ -80,7 +80,7 @@ fn search_with(
     stack: &mut Vec<(Probe, Probe)>,
     stats: &mut Stats,
     refine: bool,
-) -> Result<(), (Probe, f64)> {
+) -> Result<(), Stop> {
     let (a, b) = (eta.a, eta.b);
     let duration = span.t1 - span.t0;
     let radii = (a.shape.radius(), b.shape.radius());
@@ -88,6 +88,11 @@ fn search_with(
     stack.push(ends);
     let mut grazes = PendingGrazes::default();
     while let Some((l, r)) = stack.pop() {
+        if s.out_of_work(stats) {
+            // Everything before `l` is proven (grazes aside).
+            grazes.accept(stats);
+            return Err(Stop::OutOfWork(span.time_before(l.u)));
+        }
         let mid = 0.5 * (l.u + r.u);
         let resolved = !(l.u < mid && mid < r.u);
         if l.eta.is_nan() || r.eta.is_nan() {
@@ -97,7 +102,7 @@ fn search_with(
         }
         if r.eta < s.delta {
             if let Some(start) = grazes.within(span.time_after(r.u), s.time_tol) {
-                return Err((r, start));
+                return Err(Stop::Contact(r, start));
             }
             // A contact lies in (l, r]: bisect until the interval is within tolerance.
             if (r.u - l.u) * duration <= s.time_tol || resolved {
@@ -106,7 +111,7 @@ fn search_with(
                 } else {
                     grazes.accept(stats);
                 }
-                return Err((r, span.time_before(l.u)));
+                return Err(Stop::Contact(r, span.time_before(l.u)));
             }
         } else {
             // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)
@@ -192,7 +197,7 @@ impl PendingGrazes {
         bound: BoundKind,
         s: &PairSettings,
         stats: &mut Stats,
-    ) -> Result<(), (Probe, f64)> {
+    ) -> Result<(), Stop> {
         let fine = PairSettings {
             time_tol: s.time_tol / GRAZE_REFINEMENT,
             ..*s

@@ -23,6 +23,24 @@ pub struct PairSettings {
     pub start: f64,
     /// Narrow-phase tolerances.
     pub walk: WalkTolerances,
+    /// Work budget of the pair: evaluations of η (merged interval ends, bisections, looks).
+    pub max_work: u64,
+}
+
+impl PairSettings {
+    /// Whether the pair has done all the work it may (see [`PairSettings::max_work`]).
+    pub fn out_of_work(&self, stats: &Stats) -> bool {
+        stats.intervals + stats.bisections + stats.looks >= self.max_work
+    }
+}
+
+/// Why a search of a merged interval stopped before its end.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Stop {
+    /// A witness closer than δ, and the end of the certified prefix before it.
+    Contact(Probe, f64),
+    /// The work budget ran out; the prefix up to this time is certified.
+    OutOfWork(f64),
 }
 
 /// A contact found on one pair.
@@ -43,6 +61,8 @@ pub struct PairOutcome {
     pub contact: Option<PairContact>,
     /// End of the prefix certified free of contact.
     pub safe_until: f64,
+    /// Whether the work budget ran out at `safe_until`, neither proof nor witness beyond.
+    pub out_of_work: bool,
     /// Number of merged intervals of the pair over the whole horizon.
     pub merged_intervals: usize,
     /// `(start of merged interval, counters before it)`, for every interval examined.
@@ -194,6 +214,7 @@ pub fn check_pair(
     let outcome = |contact: Option<PairContact>, safe_until: f64, log, total| PairOutcome {
         contact,
         safe_until,
+        out_of_work: false,
         merged_intervals,
         log,
         total,
@@ -230,13 +251,24 @@ pub fn check_pair(
             Method::Sampled { step } => sampled::search(&mut eta, &span, ends, step, s, &mut stats),
             Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
         };
-        if let Err((witness, safe_until)) = searched {
-            // Never report a contact before its witness.
-            let witness = Probe {
-                t: span.time_after(witness.u),
-                ..witness
-            };
-            return outcome(contact(&witness, k), safe_until, log, stats);
+        match searched {
+            Ok(()) => {}
+            Err(Stop::Contact(witness, safe_until)) => {
+                // Never report a contact before its witness.
+                let witness = Probe {
+                    t: span.time_after(witness.u),
+                    ..witness
+                };
+                return outcome(contact(&witness, k), safe_until, log, stats);
+            }
+            Err(Stop::OutOfWork(safe_until)) => {
+                // Nothing after this can be the scene's first event: no pair need look on.
+                limit.lower_to(safe_until);
+                return PairOutcome {
+                    out_of_work: true,
+                    ..outcome(None, safe_until, log, stats)
+                };
+            }
         }
         left = right;
     }

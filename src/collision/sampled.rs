@@ -1,7 +1,7 @@
 //! The sampled method on one merged interval: look at fixed times, prove nothing between.
 
 use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span};
+use super::pair::{PairSettings, Span, Stop};
 use super::Stats;
 
 /// Looks at every time start + k·`step` inside the interval, then at its right end; the
@@ -14,7 +14,7 @@ pub(super) fn search(
     step: f64,
     s: &PairSettings,
     stats: &mut Stats,
-) -> Result<(), (Probe, f64)> {
+) -> Result<(), Stop> {
     let duration = span.t1 - span.t0;
     let mut last = left.u;
     // The first multiple of `step` after t0; counting in k keeps the looks on one global grid.
@@ -35,12 +35,12 @@ pub(super) fn search(
             ..eta.at(t, span.poses(u), stats)
         };
         if p.eta < s.delta {
-            return Err((p, span.time_before(last)));
+            return Err(Stop::Contact(p, span.time_before(last)));
         }
         last = u;
     }
     if right.eta < s.delta {
-        return Err((right, span.time_before(last)));
+        return Err(Stop::Contact(right, span.time_before(last)));
     }
     Ok(())
 }
