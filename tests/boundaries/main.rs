@@ -9,6 +9,7 @@
 //! implementation (GJK), as a cross-check of the witness.
 
 mod contact_shapes;
+mod convexity;
 mod input;
 mod long_edges;
 mod precision;
