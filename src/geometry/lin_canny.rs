@@ -10,7 +10,7 @@
 use super::segment::{
     closest_ends, crossing, nearly_parallel, project_on_segment, segment_segment,
 };
-use super::{brute_force_distance, Feature, FeaturePair, Posed, Vec2};
+use super::{brute_force_distance, cross, Feature, FeaturePair, Posed, Vec2};
 
 /// Tolerances and limits of the walk.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -144,7 +144,7 @@ pub fn closest_features(
             _ => {}
         }
         if let (Feature::Edge(i), Feature::Edge(j)) = (fa, fb) {
-            match overlap_end(a, i, b, j, floor, tol) {
+            match overlap_end(a, i, b, j, (distance, floor), tol) {
                 OverlapEnd::Cross(x) => {
                     return Distance {
                         point_a: x,
@@ -212,11 +212,18 @@ fn overlap_end(
     i: usize,
     b: &Posed,
     j: usize,
-    floor: f64,
+    (middle, floor): (f64, f64),
     tol: &WalkTolerances,
 ) -> OverlapEnd {
     let (p0, p1) = (a.vertex(i), a.vertex(a.next(i)));
     let (q0, q1) = (b.vertex(j), b.vertex(b.next(j)));
+    // The middle's distance is to the line of edge j; along edge i that changes by at most
+    // |cross| / |edge j|. Within the floor (most often: exactly parallel faces) nothing is
+    // closer, and no square root is needed to tell.
+    let (c, slack) = (cross(&(p1 - p0), &(q1 - q0)), middle - floor);
+    if c * c <= slack * slack * (q1 - q0).norm_squared() {
+        return OverlapEnd::Middle;
+    }
     if !nearly_parallel(&p0, &p1, &q0, &q1, tol.parallel_tol) {
         return OverlapEnd::Middle;
     }
