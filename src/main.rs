@@ -2,7 +2,7 @@
 //!
 //! Exit status, every command: 2 when the input cannot be used (the message on stderr names
 //! the file, the body and the field) or an output file cannot be written.
-//! * `check`: 0 collision-free, 1 collision found.
+//! * `check`: 0 collision-free, 1 collision found, 3 unresolved within the work budget.
 //! * `solve`: 0 a collision-free schedule found, 1 none found within the limits.
 //! * `evaluate`: 0 the schedule is collision-free, 1 it collides.
 //! * `generate`: 0 all scenes or cells written.
@@ -32,7 +32,8 @@ struct Cli {
 enum Command {
     /// Certify a scene collision-free, or find its first contact (Feyeux & Landry 2013).
     ///
-    /// Exit status: 0 collision-free, 1 collision found, 2 unusable input.
+    /// Exit status: 0 collision-free, 1 collision found, 2 unusable input, 3 unresolved
+    /// (a pair used its work budget with neither a proof nor a collision).
     Check {
         /// Scene file (JSON, see README: "Scene file").
         scene: PathBuf,
@@ -55,6 +56,9 @@ enum Command {
         /// Also give each pair's counters (`pair_stats` in the JSON).
         #[arg(long)]
         per_pair: bool,
+        /// Work budget of each pair, in evaluations of the distance (default 1000000).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        max_work: Option<u64>,
     },
     /// Schedule a cell: plan every move, sequence the tasks, check the schedule and re-plan
     /// around collisions until it is collision-free.
@@ -229,13 +233,16 @@ fn main() -> ExitCode {
             method,
             time_tol,
             per_pair,
+            max_work,
         } => {
+            let defaults = CheckOptions::default();
             let opts = CheckOptions {
                 delta,
                 time_tol,
                 per_pair,
                 method,
-                ..CheckOptions::default()
+                max_work_per_pair: max_work.unwrap_or(defaults.max_work_per_pair),
+                ..defaults
             };
             cli::check::run_check(&scene, json, &opts)
         }

@@ -9,7 +9,7 @@ mod common;
 
 use common::{
     centroid, dot, draw, ellipse_shape, exact_distance, lerp_pose, place, polygon, pose_at,
-    radius_about, sub, unit_square, Shape,
+    proptest_config, radius_about, sub, unit_square, Shape,
 };
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
@@ -479,7 +479,7 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(proptest_config(128))]
 
     #[test]
     fn checker_agrees_with_dense_sampling(spec in scene_spec()) {
@@ -488,7 +488,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(proptest_config(64))]
 
     /// Near misses, decided both ways: closer than δ(1 − grazing_tol) is a collision, δ or
     /// farther is not (in between, either answer is allowed).

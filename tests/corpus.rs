@@ -115,6 +115,14 @@ fn agrees_with_every_corpus_scene() {
                     t.horizon[1]
                 );
             }
+            if !r.certified {
+                failures.push(format!(
+                    "{}: {}: not certified: {:?}",
+                    dir.display(),
+                    t.file,
+                    r.stats
+                ));
+            }
             checked += 1;
         }
     }
@@ -197,4 +205,43 @@ fn halls_do_not_depend_on_the_number_of_threads() {
             }
         }
     }
+}
+
+/// Every kind of `workcell generate` ends certified, colliding or not: none is built to
+/// graze δ. Before grazes were searched again when a contact followed them, 14 of the 300
+/// pairs, bad-velocities and large-coordinates scenes of seeds 2 and 3 were not certified:
+/// the pair grazed just before its contact. The README's table of how often each kind ends
+/// certified is printed by
+/// `cargo test --release --test corpus every_generated_kind_ends_certified -- --nocapture`.
+#[test]
+fn every_generated_kind_ends_certified() {
+    use workcell::generate::{generate_scene, Kind};
+    const SEEDS: [u64; 3] = [1, 2, 3];
+    const COUNT: u64 = 30;
+    let mut failures = Vec::new();
+    eprintln!("| kind | scenes | colliding | certified |");
+    eprintln!("| --- | ---: | ---: | ---: |");
+    for kind in Kind::ALL {
+        let (mut colliding, mut certified) = (0, 0);
+        for seed in SEEDS {
+            for k in 0..COUNT {
+                let r = check(&generate_scene(kind, seed, k, 10), &CheckOptions::default());
+                colliding += usize::from(r.collision);
+                certified += usize::from(r.certified);
+                if !r.certified {
+                    failures.push(format!("{}-{seed}-{k}: {:?}", kind.name(), r.stats));
+                }
+            }
+        }
+        let scenes = SEEDS.len() * COUNT as usize;
+        eprintln!(
+            "| `{}` | {scenes} | {colliding} | {certified} |",
+            kind.name()
+        );
+    }
+    assert!(
+        failures.is_empty(),
+        "not certified:\n{}",
+        failures.join("\n")
+    );
 }

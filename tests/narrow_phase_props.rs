@@ -6,7 +6,7 @@ mod common;
 
 use common::{
     boundary_distance, centroid, draw, ellipse_shape, exact, hull_shape, place, polygon,
-    radius_about, rectangle_shape, regular_shape, unit_square, Exact, Shape,
+    proptest_config, radius_about, rectangle_shape, regular_shape, Exact, Shape,
 };
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
@@ -15,30 +15,6 @@ use workcell::geometry::{
     brute_force_distance, closest_features, ConvexPolygon, Distance, Feature, FeaturePair, Posed,
     Vec2, WalkTolerances,
 };
-
-#[test]
-fn oracle_sanity() {
-    let sq = unit_square;
-    let e = exact(&sq(0.0, 0.0), &sq(2.0, 0.0));
-    assert!(!e.overlap && (e.distance - 1.0).abs() < 1e-15);
-    let e = exact(&sq(0.0, 0.0), &sq(2.0, 2.0));
-    assert!(!e.overlap && (e.distance - 2f64.sqrt()).abs() < 1e-15);
-    assert!(exact(&sq(0.0, 0.0), &sq(1.0, 0.5)).overlap); // touching edges
-    assert!(exact(&sq(0.0, 0.0), &sq(1.0, 1.0)).overlap); // touching corners
-    assert!(exact(&sq(0.0, 0.0), &sq(0.5, 0.5)).overlap); // overlap
-
-    // A cross: no vertex of either is inside the other, but the edges cross.
-    let wide = [[-2.0, -0.5], [2.0, -0.5], [2.0, 0.5], [-2.0, 0.5]];
-    let tall = wide.map(|[x, y]| [y, x]);
-    assert!(exact(&wide, &tall).overlap);
-    // Containment: no edges meet.
-    let big: Shape = sq(0.0, 0.0)
-        .iter()
-        .map(|[x, y]| [x * 10.0, y * 10.0])
-        .collect();
-    assert!(exact(&big, &sq(4.0, 4.0)).overlap);
-    assert!(exact(&sq(4.0, 4.0), &big).overlap);
-}
 
 // ---------------------------------------------------------------------------------------
 // Generators
@@ -481,7 +457,7 @@ fn check_case(c: &PairCase, w: &Warm) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(proptest_config(256))]
 
     #[test]
     fn walk_matches_oracle(c in pair_case(), w in warm()) {
@@ -568,4 +544,45 @@ fn touching_wedge_is_at_distance_zero() {
         d.distance,
         d.features
     );
+}
+
+proptest! {
+    #![proptest_config(proptest_config(512))]
+
+    /// Slabs up to 10⁷ long whose long faces are at an angle below the walk's parallel
+    /// tolerance (10⁻¹⁰), one slid along the other and lifted by up to its drop: the true
+    /// minimum is at an end of the overlap, up to 5·10⁻⁴ below its middle. The walk gives
+    /// it to rounding, far tighter than the 10⁻⁹·size of the other properties.
+    #[test]
+    fn walk_is_exact_on_long_nearly_parallel_edges(
+        len in prop_oneof![Just(1e7), 1e3f64..1e7],
+        angle in prop_oneof![Just(5e-11), Just(-9e-11), -1.5e-10f64..1.5e-10],
+        slide in -0.9f64..0.9,
+        lift in -0.5f64..2.0,
+        turn in 0.0..TAU,
+        w in warm(),
+    ) {
+        let half = 0.5 * len;
+        let slab = vec![[-half, 0.0], [half, 0.0], [half, 1.0], [-half, 1.0]];
+        let wall = vec![[-half, -1.0], [half, -1.0], [half, 0.0], [-half, 0.0]];
+        // The slab's face lies `lift`·(its drop over the half length) above the wall's, at
+        // its middle, `slide`·len along it; both turned by `turn` about the origin.
+        let drop = angle.abs() * half;
+        let (s, c) = turn.sin_cos();
+        let (x, y) = (slide * len, 1e-3 + lift * drop);
+        let case = PairCase {
+            kind: "long-parallel",
+            a: slab,
+            pose_a: [c * x - s * y, s * x + c * y, turn + angle],
+            b: wall,
+            pose_b: [0.0, 0.0, turn],
+        };
+        let st = Setting { tol: 1e-14 * len, ..setting(&case) };
+        let (a, b) = (posed(&st.pa, case.pose_a), posed(&st.pb, case.pose_b));
+        let tolw = WalkTolerances::default();
+        agrees(&st, &closest_features(&a, &b, None, &tolw), "cold")?;
+        let swapped = closest_features(&b, &a, None, &tolw).distance;
+        prop_assert!((swapped - st.oracle.distance).abs() <= st.tol, "swapped: {swapped:e}");
+        agrees(&st, &warm_walk(&st, &case, &w, &tolw), "warm")?;
+    }
 }

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 use workcell::cell::{check_precision, parse_scene};
-use workcell::collision::{check, CheckOptions, CheckReport};
+use workcell::collision::{check, CheckOptions, CheckReport, Method};
 
 const SQUARE: &str = "[[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]]";
 const WALL: &str = r#""obstacles": [{"name": "wall", "shape": [[-1,-5],[1,-5],[1,5],[-1,5]]}]"#;
@@ -130,4 +130,96 @@ fn a_jump_within_a_subnormal_time_step_collides() {
     // The same jump far from B is free.
     let r = run(&text.replace(r#""x": 5, "y": 0"#, r#""x": 5, "y": 50"#));
     assert!(!r.collision && r.certified, "{r:?}");
+}
+
+/// A thin tip of length 1 spinning `turns` times about G, a quarter turn per sample, past
+/// a wall δ·(1 + 10⁻⁹) beyond its reach: free, but the first-order condition proves each
+/// pass only in about 10⁴ pieces.
+fn spinning_tip(turns: usize) -> String {
+    let samples: Vec<String> = (0..=4 * turns)
+        .map(|k| {
+            let theta = k as f64 * std::f64::consts::FRAC_PI_2;
+            format!(
+                r#"{{"t": {}, "x": 0, "y": 0, "theta": {theta}}}"#,
+                k as f64 * 0.25
+            )
+        })
+        .collect();
+    let g = 1.0 + 0.001 * (1.0 + 1e-9);
+    format!(
+        r#"{{"delta": 0.001, "robots": [{{"name": "tip", "shape": [[-0.05,-0.01],[1,0],[-0.05,0.01]],
+        "trajectory": [{}]}}], "obstacles": [{{"name": "wall", "shape": [[{g},-5],[{},-5],[{},5],[{g},5]]}}]}}"#,
+        samples.join(","),
+        g + 1.0,
+        g + 1.0
+    )
+}
+
+#[test]
+fn a_spinning_tip_stops_at_its_work_budget_and_is_not_called_free() {
+    // Before: 9,600 evaluations of η per turn without a cap (2.9·10⁶ for these 300 turns,
+    // 6·10⁷ and 35 s for the 6000 of the issue), reported free.
+    let r = run(&spinning_tip(300));
+    let work = r.stats.intervals + r.stats.bisections + r.stats.looks;
+    assert!(work <= 1_000_000, "{work} evaluations");
+    assert!(!r.collision && !r.certified, "{r:?}");
+    let b = r.budget_exhausted.as_ref().expect("the budget runs out");
+    assert_eq!(b.bodies, ["tip", "wall"]);
+    assert!(r.safe_until <= b.time && b.time < r.horizon[1], "{r:?}");
+    // Ten turns fit in the budget.
+    let r = run(&spinning_tip(10));
+    assert!(!r.collision && r.budget_exhausted.is_none(), "{r:?}");
+}
+
+#[test]
+fn the_papers_bound_over_a_huge_time_gap_stops_at_its_work_budget() {
+    // A velocity derived across a step of 10⁻⁶ is applied to the next step of 10³: the
+    // paper's λ is 10⁹ times too large there, and was split 9.4·10⁷ times (28 s).
+    let text = format!(
+        r#"{{"delta": 0.001, "robots": [
+        {{"name": "A", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0, "y": 0}}, {{"t": 1e-6, "x": 1, "y": 0}}, {{"t": 1000, "x": 2, "y": 0}}]}},
+        {{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 0, "y": 3}}]}}]}}"#
+    );
+    let loaded = parse_scene(&text, Path::new("gap.json")).unwrap();
+    let opts = CheckOptions {
+        method: "adaptive-paper".parse().unwrap(),
+        ..CheckOptions::default()
+    };
+    let r = check(&loaded.scene, &opts);
+    assert!(
+        r.stats.intervals + r.stats.bisections <= 1_000_000,
+        "{:?}",
+        r.stats
+    );
+    assert!(
+        !r.collision && !r.certified && r.budget_exhausted.is_some(),
+        "{r:?}"
+    );
+}
+
+#[test]
+fn advance_finds_a_dip_inside_one_time_tolerance() {
+    // A burst of samples 10⁻³ apart in a horizon of 1000 (time tolerance 10⁻³): the square
+    // passes 0.5·δ over the apex of a triangle within one step. Its ends are 2·δ away, so
+    // conservative advancement took one step of the tolerance over it and called it a
+    // graze: free.
+    let (d, y) = (0.001, 0.5 + 0.0005);
+    let (x0, x1) = (-0.5 - 2.0 * d, 0.5 + 2.0 * d);
+    let text = format!(
+        r#"{{"delta": {d}, "robots": [{{"name": "A", "shape": {SQUARE}, "trajectory": [
+        {{"t": 0, "x": {x0}, "y": {y}}}, {{"t": 500, "x": {x0}, "y": {y}}},
+        {{"t": 500.001, "x": {x1}, "y": {y}}}, {{"t": 1000, "x": {x1}, "y": {y}}}]}}],
+        "obstacles": [{{"name": "apex", "shape": [[-2,-1],[2,-1],[0,0]]}}]}}"#
+    );
+    let loaded = parse_scene(&text, Path::new("burst.json")).unwrap();
+    for method in [Method::DEFAULT, Method::Advance] {
+        let opts = CheckOptions {
+            method,
+            ..CheckOptions::default()
+        };
+        let r = check(&loaded.scene, &opts);
+        let c = r.first_contact.as_ref().expect("the dip is a contact");
+        assert!(c.distance <= 0.5 * d + 1e-12, "{method}: {r:?}");
+        assert!(r.certified && r.stats.grazing == 0, "{method}: {r:?}");
+    }
 }

@@ -12,7 +12,10 @@ mod sequences_file;
 pub use cell_file::{load_cell, parse_cell, Cell, CellObstacle, CellRobot, LoadedCell, Task};
 pub use error::InputError;
 pub use legs_file::{parse_legs, LegSpec, PieceSpec, PrimitiveSpec};
-pub use precision::{check_precision, MAX_COORDINATE_OVER_DELTA};
+pub use precision::{
+    check_precision, check_time_resolution, MAX_COORDINATE_OVER_DELTA, MAX_REPAIR_SHIFT_OVER_DELTA,
+    MIN_TIME_TOL_OVER_ULP,
+};
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
 pub use scene_writer::scene_document;
 pub use sequences_file::{load_sequences, parse_sequences, Sequences, Wait};

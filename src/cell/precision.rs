@@ -1,7 +1,7 @@
-//! Refusing scenes that f64 cannot check at their δ.
+//! Refusing scenes that f64 cannot check at their δ and time tolerance.
 
 use super::InputError;
-use crate::collision::Scene;
+use crate::collision::{Body, Scene};
 use crate::motion::Motion;
 use std::path::Path;
 
@@ -10,9 +10,89 @@ use std::path::Path;
 /// bisection can always split an interval finer than that allowance.
 pub const MAX_COORDINATE_OVER_DELTA: f64 = (1u64 << 38) as f64;
 
-/// Refuses a scene whose coordinates are too large for δ to be resolved in f64, or whose
-/// horizon is longer than f64 holds. Fields are named as in the scene file (robots first,
-/// then obstacles, in file order).
+/// Largest boundary shift accepted from the removal of repeated and collinear vertices, as a
+/// fraction of δ: 10⁻⁶. The shape tolerance that judges them is relative to the shape's
+/// size, so on shapes 10¹¹·δ long a removal can move the boundary by δ; a shift this small
+/// stays far below the grazing allowance (10⁻⁴ δ) once rounding (6·10⁻⁵ δ) is counted.
+pub const MAX_REPAIR_SHIFT_OVER_DELTA: f64 = 1e-6;
+
+/// Fewest time tolerances per unit in the last place of the latest time stamp: 16. A time
+/// is reported to the nearest f64, so at 10¹⁵ (a unit of 0.125) a contact would be reported
+/// up to 0.06 early or late: coarser than a time tolerance of 10⁻³, and at the reported
+/// time the bodies need not be within δ.
+pub const MIN_TIME_TOL_OVER_ULP: f64 = 16.0;
+
+/// Where a body's fields start in the scene file: `robots[k]` or `obstacles[k]`.
+fn field_of(scene: &Scene, k: usize) -> String {
+    let robots = scene.bodies.iter().filter(|b| b.is_robot()).count();
+    if k < robots {
+        format!("robots[{k}]")
+    } else {
+        format!("obstacles[{}]", k - robots)
+    }
+}
+
+/// Refuses a shape whose clean-up (repeated and collinear vertices removed) moved its
+/// boundary by more than [`MAX_REPAIR_SHIFT_OVER_DELTA`]·δ.
+fn check_repairs(body: &Body, at: &str, delta: f64, file: &Path) -> Result<(), InputError> {
+    let limit = MAX_REPAIR_SHIFT_OVER_DELTA * delta;
+    match body.shape.repair_shift() {
+        Some(shift) if shift.distance > limit => Err(InputError::new(
+            file,
+            Some(&body.name),
+            format!("{at}.shape[{}]", shift.vertex),
+            format!(
+                "this vertex lies {:e} from the rest of the shape, which the shape tolerance \
+                 (relative to the shape's size) took for a repeated or collinear vertex; \
+                 removing it would move the boundary by more than {limit:e} \
+                 ({MAX_REPAIR_SHIFT_OVER_DELTA:e} x delta): leave it out of the file, or \
+                 move it off its neighbours",
+                shift.distance
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses a scene whose time stamps f64 spaces more coarsely than the time tolerance
+/// `time_tol` allows ([`MIN_TIME_TOL_OVER_ULP`]): the reported times could not be trusted
+/// to it. The message names the latest time stamp (in magnitude).
+pub fn check_time_resolution(scene: &Scene, time_tol: f64, file: &Path) -> Result<(), InputError> {
+    let (start, end) = scene.horizon();
+    if end == start {
+        return Ok(()); // no time to search
+    }
+    let latest = scene
+        .bodies
+        .iter()
+        .enumerate()
+        .flat_map(|(k, b)| b.motion.times().enumerate().map(move |(i, t)| (k, i, t)))
+        .max_by(|x, y| x.2.abs().total_cmp(&y.2.abs()));
+    let Some((k, i, t)) = latest else {
+        return Ok(());
+    };
+    // One unit in the last place of t is at most ε·|t|.
+    let spacing = f64::EPSILON * t.abs();
+    if spacing * MIN_TIME_TOL_OVER_ULP <= time_tol {
+        return Ok(());
+    }
+    let body = &scene.bodies[k];
+    Err(InputError::new(
+        file,
+        Some(&body.name),
+        format!("{}.trajectory[{i}].t", field_of(scene, k)),
+        format!(
+            "time stamps of about {t:e} are {spacing:.1e} apart in f64, too coarse for the \
+             time tolerance {time_tol:e} (it must be at least {MIN_TIME_TOL_OVER_ULP} times \
+             that spacing): count time from the start of the horizon, or raise --time-tol"
+        ),
+    ))
+}
+
+/// Refuses a scene whose coordinates are too large for δ to be resolved in f64, whose
+/// shapes were cleaned up by more than a sliver of δ ([`MAX_REPAIR_SHIFT_OVER_DELTA`]), or
+/// whose horizon is longer than f64 holds. Fields are named as in the scene file (robots
+/// first, then obstacles, in file order).
 pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), InputError> {
     let limit = MAX_COORDINATE_OVER_DELTA * delta;
     let too_large = |value: f64, what: &str| {
@@ -25,6 +105,7 @@ pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), Inp
     let robots = scene.bodies.iter().filter(|b| b.is_robot()).count();
     let (horizon_start, horizon_end) = scene.horizon();
     for (k, body) in scene.bodies.iter().enumerate() {
+        check_repairs(body, &field_of(scene, k), delta, file)?;
         let r = body.shape.radius();
         match &body.motion {
             Motion::Sampled(tr) => {

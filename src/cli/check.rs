@@ -4,10 +4,14 @@ use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
-use workcell::cell::{check_precision, load_scene, InputError};
+use workcell::cell::{check_precision, check_time_resolution, load_scene, InputError};
 use workcell::collision::{check, CheckOptions, CheckReport};
 
-/// Runs the check; the exit status is 0 collision-free, 1 collision.
+/// Exit status when a pair spent its work budget before a proof or a witness.
+const EXIT_UNRESOLVED: u8 = 3;
+
+/// Runs the check; the exit status is 0 collision-free, 1 collision, 3 unresolved within
+/// the work budget.
 pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
     let loaded = load_scene(path)?;
     check_precision(
@@ -15,6 +19,8 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
         opts.delta.unwrap_or(loaded.scene.delta),
         path,
     )?;
+    let time_tol = opts.time_tol_for(loaded.scene.horizon());
+    check_time_resolution(&loaded.scene, time_tol, path)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
@@ -26,7 +32,7 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
     let text = if json {
         serde_json::to_string_pretty(&report).expect("a report always serialises") + "\n"
     } else {
-        summary(path, &report, elapsed, threads)
+        summary(path, &report, opts, elapsed, threads)
     };
     // A closed pipe (`| head`) is the reader's choice, not an error of ours.
     let _ = std::io::stdout().write_all(text.as_bytes());
@@ -41,24 +47,73 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
             ),
         });
     }
+    if report.budget_exhausted.is_some() {
+        return Ok(ExitCode::from(EXIT_UNRESOLVED));
+    }
     Ok(ExitCode::from(u8::from(report.collision)))
 }
 
-fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> String {
+fn summary(
+    path: &Path,
+    r: &CheckReport,
+    opts: &CheckOptions,
+    elapsed: Duration,
+    threads: usize,
+) -> String {
     let mut out = String::new();
     let mut line = |l: String| {
         out.push_str(&l);
         out.push('\n');
     };
-    match &r.first_contact {
-        None => line(format!(
-            "{}: collision-free over [{}, {}] (delta {})",
+    // What a verdict of free rests on: a proof, a proof up to grazes, or nothing at all.
+    let method = opts.method;
+    let proof = if !method.proves_free() {
+        format!("not certified: `{method}` certifies nothing")
+    } else if r.stats.unresolved > 0 {
+        format!(
+            "not certified: {} intervals unresolved in f64",
+            r.stats.unresolved
+        )
+    } else if r.stats.grazing > 0 {
+        "NOT CERTIFIED: within the grazing allowance".to_owned()
+    } else {
+        "certified".to_owned()
+    };
+    match (&r.first_contact, &r.budget_exhausted) {
+        (None, Some(b)) => {
+            line(format!(
+                "{}: UNRESOLVED: {} and {} used their work budget ({} evaluations of the distance) at t = {} with neither a proof nor a collision",
+                path.display(),
+                b.bodies[0],
+                b.bodies[1],
+                b.work,
+                time(b.time)
+            ));
+            line(format!(
+                "collision-free until t = {} ({}), unknown after it; --max-work raises the budget",
+                time(r.safe_until),
+                if proof == "certified" {
+                    "certified"
+                } else {
+                    &proof
+                }
+            ));
+        }
+        (None, None) if method.proves_free() => line(format!(
+            "{}: collision-free over [{}, {}] (delta {}; {proof})",
             path.display(),
             r.horizon[0],
             r.horizon[1],
             r.delta
         )),
-        Some(c) => {
+        (None, None) => line(format!(
+            "{}: no collision found over [{}, {}] (delta {}; {proof})",
+            path.display(),
+            r.horizon[0],
+            r.horizon[1],
+            r.delta
+        )),
+        (Some(c), _) => {
             line(format!(
                 "{}: COLLISION between {} and {} at t = {} (merged interval {}, distance {:.6e} < delta {})",
                 path.display(),
@@ -69,13 +124,13 @@ fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> S
                 c.distance,
                 r.delta
             ));
-            let proven = if r.certified {
-                "certified"
+            let before = if method.proves_free() {
+                "collision-free until"
             } else {
-                "within the grazing allowance"
+                "no collision found before"
             };
             line(format!(
-                "collision-free until t = {} ({proven}; time tolerance {:.3e})",
+                "{before} t = {} ({proof}; time tolerance {:.3e})",
                 time(r.safe_until),
                 r.time_tol
             ));
@@ -95,8 +150,8 @@ fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> S
     }
     if s.grazing > 0 {
         line(format!(
-            "NOT CERTIFIED: {} intervals (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - 1e-4)",
-            s.grazing
+            "NOT CERTIFIED: {} intervals (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
+            s.grazing, opts.grazing_tol
         ));
     }
     line(format!(
@@ -109,11 +164,12 @@ fn summary(path: &Path, r: &CheckReport, elapsed: Duration, threads: usize) -> S
     out
 }
 
-/// A time for people: nine decimals, or nine significant digits when it is huge.
+/// A time for people: nine decimals, or every digit f64 holds when it is huge (nine
+/// significant digits would hide the time of day in a time stamp of 10¹⁴).
 pub fn time(t: f64) -> String {
     if t.abs() < 1e9 {
         format!("{t:.9}")
     } else {
-        format!("{t:.9e}")
+        format!("{t:e}")
     }
 }

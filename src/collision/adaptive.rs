@@ -1,7 +1,7 @@
 //! Table 1 of Feyeux & Landry on one merged interval: certify or bisect.
 
 use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span};
+use super::pair::{PairSettings, Span, Stop};
 use super::Stats;
 use crate::motion::BoundKind;
 
@@ -39,11 +39,24 @@ fn convexity_bound(l: &Probe, r: &Probe, radii: (f64, f64), feature_tol: f64) ->
     low - 10.0 * feature_tol * w.norm()
 }
 
+/// How much finer than the time tolerance the grazes met just before a contact are searched
+/// again: a pair closing in on a contact cannot be proven δ apart on the last intervals
+/// before it at the time tolerance, but can at a finer one.
+const GRAZE_REFINEMENT: f64 = 1024.0;
+
 /// Table 1 on one merged interval, both ends evaluated and the left one known free.
 ///
 /// Depth-first, left half first, so the first witness (η < δ, an exact distance) found
 /// after the certified prefix is the earliest contact up to `time_tol`. Returns the witness
 /// and the end of the certified prefix, or `Ok` when the whole interval is certified.
+///
+/// A graze (no proof of δ, no witness, on an interval shorter than the time tolerance) is
+/// accepted only once no contact follows it within the interval. A pair closing in on a
+/// contact grazes just before it: a witness within a time tolerance of the first such graze
+/// is reported with the prefix before the graze, which is proven, and the contact is still
+/// within the time tolerance of the true first one; a witness farther away has the grazes
+/// before it searched again [`GRAZE_REFINEMENT`] times finer, which proves them or finds an
+/// earlier contact in them.
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
@@ -52,13 +65,34 @@ pub(super) fn search(
     s: &PairSettings,
     stack: &mut Vec<(Probe, Probe)>,
     stats: &mut Stats,
-) -> Result<(), (Probe, f64)> {
+) -> Result<(), Stop> {
+    search_with(eta, span, ends, bound, s, stack, stats, true)
+}
+
+/// [`search`], refining the grazes before a contact when `refine`.
+#[allow(clippy::too_many_arguments)]
+fn search_with(
+    eta: &mut Eta,
+    span: &Span,
+    ends: (Probe, Probe),
+    bound: BoundKind,
+    s: &PairSettings,
+    stack: &mut Vec<(Probe, Probe)>,
+    stats: &mut Stats,
+    refine: bool,
+) -> Result<(), Stop> {
     let (a, b) = (eta.a, eta.b);
     let duration = span.t1 - span.t0;
     let radii = (a.shape.radius(), b.shape.radius());
     stack.clear();
     stack.push(ends);
+    let mut grazes = PendingGrazes::default();
     while let Some((l, r)) = stack.pop() {
+        if s.out_of_work(stats) {
+            // Everything before `l` is proven (grazes aside).
+            grazes.accept(stats);
+            return Err(Stop::OutOfWork(span.time_before(l.u)));
+        }
         let mid = 0.5 * (l.u + r.u);
         let resolved = !(l.u < mid && mid < r.u);
         if l.eta.is_nan() || r.eta.is_nan() {
@@ -67,9 +101,17 @@ pub(super) fn search(
             continue;
         }
         if r.eta < s.delta {
+            if let Some(start) = grazes.within(span.time_after(r.u), s.time_tol) {
+                return Err(Stop::Contact(r, start));
+            }
             // A contact lies in (l, r]: bisect until the interval is within tolerance.
             if (r.u - l.u) * duration <= s.time_tol || resolved {
-                return Err((r, l.t));
+                if refine {
+                    grazes.refine(eta, span, bound, s, stats)?;
+                } else {
+                    grazes.accept(stats);
+                }
+                return Err(Stop::Contact(r, span.time_before(l.u)));
             }
         } else {
             // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)
@@ -93,7 +135,7 @@ pub(super) fn search(
             if (r.u - l.u) * duration <= s.time_tol && low >= s.delta - s.grazing_tol {
                 // Within the time tolerance and within the allowance of δ, with no witness:
                 // a graze. Splitting on would cost ever more where a body turns at exactly δ.
-                stats.grazing += 1;
+                grazes.add((l, r), span.time_before(l.u));
                 continue;
             }
             if resolved {
@@ -108,5 +150,62 @@ pub(super) fn search(
         stack.push((Probe { u: mid, ..m }, r));
         stack.push((l, Probe { u: mid, ..m }));
     }
+    grazes.accept(stats);
     Ok(())
+}
+
+/// The grazes met since the last proof, in time order, not yet accepted.
+#[derive(Default)]
+struct PendingGrazes {
+    /// Where the first of them starts.
+    start: f64,
+    intervals: Vec<(Probe, Probe)>,
+}
+
+impl PendingGrazes {
+    /// A graze on `interval`, which starts at time `t`.
+    fn add(&mut self, interval: (Probe, Probe), t: f64) {
+        if self.intervals.is_empty() {
+            self.start = t;
+        }
+        self.intervals.push(interval);
+    }
+
+    /// The start of the pending grazes, when a witness at `t` is within `time_tol` of it:
+    /// they are then part of the contact, not grazes.
+    fn within(&mut self, t: f64, time_tol: f64) -> Option<f64> {
+        if self.intervals.is_empty() || t - self.start > time_tol {
+            return None;
+        }
+        self.intervals.clear();
+        Some(self.start)
+    }
+
+    /// No contact follows: the pending grazes are accepted.
+    fn accept(&mut self, stats: &mut Stats) {
+        stats.grazing += self.intervals.len() as u64;
+        self.intervals.clear();
+    }
+
+    /// A contact follows, farther than a time tolerance from the first graze: searches each
+    /// graze again at a finer time tolerance. Its finer grazes are accepted; a witness in
+    /// one of them is an earlier contact.
+    fn refine(
+        &mut self,
+        eta: &mut Eta,
+        span: &Span,
+        bound: BoundKind,
+        s: &PairSettings,
+        stats: &mut Stats,
+    ) -> Result<(), Stop> {
+        let fine = PairSettings {
+            time_tol: s.time_tol / GRAZE_REFINEMENT,
+            ..*s
+        };
+        let mut stack = Vec::new();
+        for interval in std::mem::take(&mut self.intervals) {
+            search_with(eta, span, interval, bound, &fine, &mut stack, stats, false)?;
+        }
+        Ok(())
+    }
 }

@@ -1,53 +1,66 @@
 //! Conservative advancement on one merged interval (the time of impact of Box2D and FCL).
 
 use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span};
-use super::Stats;
+use super::pair::{PairSettings, Span, Stop};
+use super::{adaptive, Stats};
 use crate::motion::BoundKind;
 
 /// From the free left end, steps forward by (η − δ) / λ', λ' bounding how far the pair can
 /// close in per unit of the interval: the pose is linear on it, so over a fraction u of the
 /// interval no point moves farther than u·λ (rigorous λ). The first look closer than δ is
-/// the contact. Returns the witness and the last free look.
+/// the contact. Returns the witness and the time of the last free look.
+///
+/// No step is shorter than the time tolerance (Box2D's target slop, as a time), or a pair
+/// gliding at δ would be advanced forever. Such a step proves nothing by itself: Table 1
+/// (`adaptive`) searches it, which proves it, finds the contact in it, or accepts it as a
+/// graze on its own terms (distance provably above δ·(1 − grazing allowance)).
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
     (left, right): (Probe, Probe),
     s: &PairSettings,
     stats: &mut Stats,
-) -> Result<(), (Probe, f64)> {
+) -> Result<(), Stop> {
     let closing = eta.lambda(BoundKind::Rigorous, &left, &right);
-    // Box2D's target slop, as a time: no step is shorter than the time tolerance, or a pair
-    // gliding at δ would be advanced forever.
     let min_step = s.time_tol / (span.t1 - span.t0);
+    let mut stack = Vec::new();
     let mut at = left;
     loop {
         if at.eta.is_nan() || right.eta.is_nan() {
             stats.unresolved += 1;
             return Ok(());
         }
-        let mut step = (at.eta - s.delta) / closing;
-        if step < min_step {
-            // Within the slop of δ: a step of the tolerance may pass a contact; a graze.
-            step = min_step;
-            stats.grazing += 1;
+        if s.out_of_work(stats) {
+            return Err(Stop::OutOfWork(span.time_before(at.u)));
         }
-        let u = (at.u + step).max(at.u.next_up());
-        if u >= 1.0 {
-            return if right.eta < s.delta {
-                Err((right, at.t))
-            } else {
-                Ok(())
-            };
-        }
-        stats.looks += 1;
-        let p = Probe {
-            u,
-            ..eta.at(span.time(u), span.poses(u), stats)
+        let step = (at.eta - s.delta) / closing;
+        let slop = step < min_step;
+        let u = (at.u + step.max(min_step)).max(at.u.next_up());
+        let next = if u >= 1.0 {
+            right
+        } else {
+            stats.looks += 1;
+            Probe {
+                u,
+                ..eta.at(span.time(u), span.poses(u), stats)
+            }
         };
-        if p.eta < s.delta {
-            return Err((p, at.t));
+        if slop {
+            adaptive::search(
+                eta,
+                span,
+                (at, next),
+                BoundKind::Rigorous,
+                s,
+                &mut stack,
+                stats,
+            )?;
+        } else if next.eta < s.delta {
+            return Err(Stop::Contact(next, span.time_before(at.u)));
         }
-        at = p;
+        if u >= 1.0 {
+            return Ok(());
+        }
+        at = next;
     }
 }

@@ -347,6 +347,7 @@ mod tests {
             method: crate::collision::Method::DEFAULT,
             start: t0,
             walk: Default::default(),
+            max_work: crate::collision::DEFAULT_MAX_WORK_PER_PAIR,
         };
         let pruned: Vec<_> = all.iter().filter(|p| !candidates.contains(p)).collect();
         for &&(i, j) in &pruned {

@@ -15,6 +15,14 @@ const PARALLEL_MIN_PAIRS: usize = 4;
 /// pair that stays apart (a few disc gaps per merged interval), so it only pays with many.
 const BROAD_PHASE_MIN_PAIRS: usize = 16;
 
+/// The default time tolerance, as a fraction of the horizon's length.
+pub const DEFAULT_TIME_TOL_OVER_HORIZON: f64 = 1e-6;
+
+/// The default work budget of a pair: evaluations of η (merged interval ends, bisections
+/// and looks). The pairs of the shipped scenes, corpus and generated kinds need at most a
+/// few thousand; a thin tip spinning past a wall at δ·(1 + 10⁻⁹) needs about 10⁴ per turn.
+pub const DEFAULT_MAX_WORK_PER_PAIR: u64 = 1_000_000;
+
 /// How to check a scene.
 #[derive(Clone, Copy, Debug)]
 pub struct CheckOptions {
@@ -33,6 +41,19 @@ pub struct CheckOptions {
     pub walk: WalkTolerances,
     /// Also report each pair's counters ([`CheckReport::pair_stats`]).
     pub per_pair: bool,
+    /// Work budget of each pair, in evaluations of η ([`DEFAULT_MAX_WORK_PER_PAIR`]). A pair
+    /// that spends it before a proof or a witness stops there, and the report says so
+    /// ([`CheckReport::budget_exhausted`]): never free.
+    pub max_work_per_pair: u64,
+}
+
+impl CheckOptions {
+    /// The absolute time tolerance used on a scene of this horizon: `time_tol`, else
+    /// [`DEFAULT_TIME_TOL_OVER_HORIZON`] of its length.
+    pub fn time_tol_for(&self, (start, end): (f64, f64)) -> f64 {
+        self.time_tol
+            .unwrap_or(DEFAULT_TIME_TOL_OVER_HORIZON * (end - start))
+    }
 }
 
 impl Default for CheckOptions {
@@ -44,6 +65,7 @@ impl Default for CheckOptions {
             grazing_tol: 1e-4,
             walk: WalkTolerances::default(),
             per_pair: false,
+            max_work_per_pair: DEFAULT_MAX_WORK_PER_PAIR,
         }
     }
 }
@@ -62,6 +84,17 @@ pub struct Contact {
     pub interval: usize,
 }
 
+/// Where a pair spent its work budget before a proof or a witness.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BudgetExhausted {
+    /// End of the prefix of the horizon certified for that pair; beyond it nothing is known.
+    pub time: f64,
+    /// The pair, robot first.
+    pub bodies: [String; 2],
+    /// The budget spent, in evaluations of η.
+    pub work: u64,
+}
+
 /// Result of a check, serialised as the scene contract's result (section 2) plus extras.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CheckReport {
@@ -78,6 +111,10 @@ pub struct CheckReport {
     /// `safe_until`, holds only down to δ·(1 − grazing_tol). A reported contact itself is
     /// always real (it has a witness).
     pub certified: bool,
+    /// When a pair spent its work budget ([`CheckOptions::max_work_per_pair`]) before any
+    /// contact: where. `collision` is then false, `certified` false and `safe_until` at most
+    /// that time: the scene is neither proven free nor found colliding after it.
+    pub budget_exhausted: Option<BudgetExhausted>,
     /// Counters, summed over pairs; independent of the number of threads.
     pub stats: Stats,
     /// First and last sample time of any robot.
@@ -137,7 +174,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
 fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let horizon = scene.horizon();
     let delta = opts.delta.unwrap_or(scene.delta);
-    let time_tol = opts.time_tol.unwrap_or(1e-6 * (horizon.1 - horizon.0));
+    let time_tol = opts.time_tol_for(horizon);
     let settings = PairSettings {
         delta,
         grazing_tol: opts.grazing_tol * delta,
@@ -145,6 +182,7 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         method: opts.method,
         start: horizon.0,
         walk: opts.walk,
+        max_work: opts.max_work_per_pair,
     };
     let all_pairs = scene.pair_count();
     let pairs = if all_pairs < BROAD_PHASE_MIN_PAIRS {
@@ -169,12 +207,26 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         pairs.iter().map(run).collect()
     };
     // Earliest contact; ties go to the first pair in report order.
-    let first = outcomes
+    let contact = outcomes
         .iter()
         .zip(&pairs)
         .filter_map(|(o, p)| o.contact.map(|c| (c, p)))
         .min_by(|x, y| x.0.time.total_cmp(&y.0.time));
-    let through = first.map_or(f64::INFINITY, |(c, _)| c.time);
+    // Earliest budget run out, which hides whatever comes after it; a contact at the same
+    // time wins.
+    let exhausted = outcomes
+        .iter()
+        .zip(&pairs)
+        .filter(|(o, _)| o.out_of_work)
+        .map(|(o, p)| (o.safe_until, p))
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+        .filter(|&(t, _)| contact.is_none_or(|(c, _)| t < c.time));
+    let first = contact.filter(|_| exhausted.is_none());
+    let through = match (first, exhausted) {
+        (Some((c, _)), _) => c.time,
+        (None, Some((t, _))) => t,
+        (None, None) => f64::INFINITY,
+    };
     let names =
         |(i, j): (usize, usize)| [scene.bodies[i].name.clone(), scene.bodies[j].name.clone()];
     let mut stats = Stats::default();
@@ -198,7 +250,15 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .fold(horizon.1, f64::min);
     CheckReport {
         collision: first.is_some(),
-        certified: opts.method.proves_free() && stats.grazing == 0 && stats.unresolved == 0,
+        certified: opts.method.proves_free()
+            && stats.grazing == 0
+            && stats.unresolved == 0
+            && exhausted.is_none(),
+        budget_exhausted: exhausted.map(|(time, &p)| BudgetExhausted {
+            time,
+            bodies: names(p),
+            work: opts.max_work_per_pair,
+        }),
         first_contact: first.map(|(c, &p)| Contact {
             time: c.time,
             bodies: names(p),

@@ -22,7 +22,10 @@ mod scene;
 mod stats;
 
 pub use broad_phase::candidate_pairs;
-pub use check::{check, CheckOptions, CheckReport, Contact, PairStats};
+pub use check::{
+    check, BudgetExhausted, CheckOptions, CheckReport, Contact, PairStats,
+    DEFAULT_MAX_WORK_PER_PAIR, DEFAULT_TIME_TOL_OVER_HORIZON,
+};
 pub use method::Method;
 #[cfg(feature = "parry-peer")]
 pub use peer::{check_with_parry, PeerReport};

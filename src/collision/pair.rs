@@ -23,6 +23,24 @@ pub struct PairSettings {
     pub start: f64,
     /// Narrow-phase tolerances.
     pub walk: WalkTolerances,
+    /// Work budget of the pair: evaluations of η (merged interval ends, bisections, looks).
+    pub max_work: u64,
+}
+
+impl PairSettings {
+    /// Whether the pair has done all the work it may (see [`PairSettings::max_work`]).
+    pub fn out_of_work(&self, stats: &Stats) -> bool {
+        stats.intervals + stats.bisections + stats.looks >= self.max_work
+    }
+}
+
+/// Why a search of a merged interval stopped before its end.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Stop {
+    /// A witness closer than δ, and the end of the certified prefix before it.
+    Contact(Probe, f64),
+    /// The work budget ran out; the prefix up to this time is certified.
+    OutOfWork(f64),
 }
 
 /// A contact found on one pair.
@@ -43,6 +61,8 @@ pub struct PairOutcome {
     pub contact: Option<PairContact>,
     /// End of the prefix certified free of contact.
     pub safe_until: f64,
+    /// Whether the work budget ran out at `safe_until`, neither proof nor witness beyond.
+    pub out_of_work: bool,
     /// Number of merged intervals of the pair over the whole horizon.
     pub merged_intervals: usize,
     /// `(start of merged interval, counters before it)`, for every interval examined.
@@ -121,6 +141,46 @@ impl Span {
         }
     }
 
+    /// The time at `u` and the error of that f64 against the exact t0 + u·(t1 − t0), by
+    /// error-free transformations (TwoSum, FMA): positive when the f64 is early.
+    fn time_and_error(&self, u: f64) -> (f64, f64) {
+        let two_sum = |x: f64, y: f64| {
+            let s = x + y;
+            let yy = s - x;
+            (s, (x - (s - yy)) + (y - yy))
+        };
+        let (d, d_err) = two_sum(self.t1, -self.t0);
+        let p = u * d;
+        let p_err = u.mul_add(d, -p);
+        let (t, t_err) = two_sum(self.t0, p);
+        (t, t_err + p_err + u * d_err)
+    }
+
+    /// The least f64 time not before the instant at `u`: a contact reported there is never
+    /// earlier than its witness, even where the time stamps are huge.
+    pub fn time_after(&self, u: f64) -> f64 {
+        match u {
+            0.0 => self.t0,
+            1.0 => self.t1,
+            _ => match self.time_and_error(u) {
+                (t, e) if e > 0.0 => t.next_up(),
+                (t, _) => t,
+            },
+        }
+    }
+
+    /// The greatest f64 time not after the instant at `u`: the end of a certified prefix.
+    pub fn time_before(&self, u: f64) -> f64 {
+        match u {
+            0.0 => self.t0,
+            1.0 => self.t1,
+            _ => match self.time_and_error(u) {
+                (t, e) if e < 0.0 => t.next_down(),
+                (t, _) => t,
+            },
+        }
+    }
+
     pub fn poses(&self, u: f64) -> (Pose, Pose) {
         (lerp(&self.a, u), lerp(&self.b, u))
     }
@@ -154,6 +214,7 @@ pub fn check_pair(
     let outcome = |contact: Option<PairContact>, safe_until: f64, log, total| PairOutcome {
         contact,
         safe_until,
+        out_of_work: false,
         merged_intervals,
         log,
         total,
@@ -190,8 +251,24 @@ pub fn check_pair(
             Method::Sampled { step } => sampled::search(&mut eta, &span, ends, step, s, &mut stats),
             Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
         };
-        if let Err((witness, safe_until)) = searched {
-            return outcome(contact(&witness, k), safe_until, log, stats);
+        match searched {
+            Ok(()) => {}
+            Err(Stop::Contact(witness, safe_until)) => {
+                // Never report a contact before its witness.
+                let witness = Probe {
+                    t: span.time_after(witness.u),
+                    ..witness
+                };
+                return outcome(contact(&witness, k), safe_until, log, stats);
+            }
+            Err(Stop::OutOfWork(safe_until)) => {
+                // Nothing after this can be the scene's first event: no pair need look on.
+                limit.lower_to(safe_until);
+                return PairOutcome {
+                    out_of_work: true,
+                    ..outcome(None, safe_until, log, stats)
+                };
+            }
         }
         left = right;
     }

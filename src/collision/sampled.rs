@@ -1,11 +1,12 @@
 //! The sampled method on one merged interval: look at fixed times, prove nothing between.
 
 use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span};
+use super::pair::{PairSettings, Span, Stop};
 use super::Stats;
 
 /// Looks at every time start + k·`step` inside the interval, then at its right end; the
-/// first look closer than δ is the contact. Returns the witness and the previous look.
+/// first look closer than δ is the contact. Returns the witness and the time of the previous
+/// look.
 pub(super) fn search(
     eta: &mut Eta,
     span: &Span,
@@ -13,9 +14,9 @@ pub(super) fn search(
     step: f64,
     s: &PairSettings,
     stats: &mut Stats,
-) -> Result<(), (Probe, f64)> {
+) -> Result<(), Stop> {
     let duration = span.t1 - span.t0;
-    let mut last = left.t;
+    let mut last = left.u;
     // The first multiple of `step` after t0; counting in k keeps the looks on one global grid.
     let mut k = ((span.t0 - s.start) / step).floor() + 1.0;
     loop {
@@ -34,12 +35,12 @@ pub(super) fn search(
             ..eta.at(t, span.poses(u), stats)
         };
         if p.eta < s.delta {
-            return Err((p, last));
+            return Err(Stop::Contact(p, span.time_before(last)));
         }
-        last = t;
+        last = u;
     }
     if right.eta < s.delta {
-        return Err((right, last));
+        return Err(Stop::Contact(right, span.time_before(last)));
     }
     Ok(())
 }

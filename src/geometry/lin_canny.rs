@@ -7,8 +7,10 @@
 //! Lin-Canny may cycle on degenerate input: the walk is cut after a bounded number of
 //! steps and the exact [`brute_force_distance`] answers instead (counted in `fell_back`).
 
-use super::segment::{project_on_segment, segment_segment};
-use super::{brute_force_distance, Feature, FeaturePair, Posed, Vec2};
+use super::segment::{
+    closest_ends, crossing, nearly_parallel, project_on_segment, segment_segment,
+};
+use super::{brute_force_distance, cross, Feature, FeaturePair, Posed, Vec2};
 
 /// Tolerances and limits of the walk.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,13 +118,131 @@ pub fn closest_features(
             }
             Step::Overlap => return result(0.0),
         }
-        return result((pb - pa).norm());
+        let distance = (pb - pa).norm();
+        // The slack of a vertex region (and rounding, on long edges) lets through a
+        // neighbouring edge that approaches the other feature at an angle too small to
+        // see from the closest points; along a long edge that angle is worth more than δ.
+        // Such an edge, when closer, takes over.
+        let floor = settled_floor(distance, &pa, &pb, tol);
+        let closer = |ea: Feature, eb: Feature| {
+            let (qa, qb) = feature_points(a, ea, b, eb, tol.parallel_tol);
+            (qb - qa).norm() < floor
+        };
+        match (fa, fb) {
+            (Feature::Vertex(v), Feature::Edge(e)) => {
+                if let Some(f) = approaching_edges(a, v, b.normal(e)).find(|&f| closer(f, fb)) {
+                    fa = f;
+                    continue;
+                }
+            }
+            (Feature::Edge(e), Feature::Vertex(v)) => {
+                if let Some(f) = approaching_edges(b, v, a.normal(e)).find(|&f| closer(fa, f)) {
+                    fb = f;
+                    continue;
+                }
+            }
+            _ => {}
+        }
+        if let (Feature::Edge(i), Feature::Edge(j)) = (fa, fb) {
+            match overlap_end(a, i, b, j, (distance, floor), tol) {
+                OverlapEnd::Cross(x) => {
+                    return Distance {
+                        point_a: x,
+                        point_b: x,
+                        ..result(0.0)
+                    }
+                }
+                OverlapEnd::Closer(pair) => {
+                    (fa, fb) = (pair.a, pair.b);
+                    continue;
+                }
+                OverlapEnd::Middle => {}
+            }
+        }
+        return result(distance);
     }
     Distance {
         steps,
         fell_back: true,
         ..brute_force_distance(a, b)
     }
+}
+
+/// The edges at vertex `v` of `p` whose other end lies nearer than `v` to the line of an
+/// edge of outward normal `n` (of the other polygon): where the closest points are a vertex
+/// and an edge, only such a neighbouring edge can come closer. Convexity makes them rare
+/// (both neighbours recede from a supporting line); they appear with nearly parallel edges.
+fn approaching_edges<'p>(p: &'p Posed, v: usize, n: Vec2) -> impl Iterator<Item = Feature> + 'p {
+    let at = p.vertex(v);
+    [(p.prev(v), p.prev(v)), (p.next(v), v)]
+        .into_iter()
+        .filter(move |&(w, _)| n.dot(&(p.vertex(w) - at)) < 0.0)
+        .map(|(_, e)| Feature::Edge(e))
+}
+
+/// Rounding of the points compared, in units of the largest coordinate (a few operations
+/// each): differences below it are noise, and chasing them would make the walk cycle.
+const ROUNDING: f64 = 8.0 * f64::EPSILON;
+
+/// How close another pair of features must come to take over from a settled pair at
+/// `distance`: closer by the Voronoi slack and by rounding.
+fn settled_floor(distance: f64, pa: &Vec2, pb: &Vec2, tol: &WalkTolerances) -> f64 {
+    let scale = pa.amax().max(pb.amax());
+    distance * (1.0 - tol.feature_tol) - ROUNDING * scale
+}
+
+/// Where two settled edges are closest, when the walk took the middle of their overlap.
+enum OverlapEnd {
+    /// Not parallel, or the middle is as close as any point (within the Voronoi slack).
+    Middle,
+    /// The nearly parallel edges cross: the polygons overlap.
+    Cross(Vec2),
+    /// An end of the overlap is closer: the walk goes on from that vertex-edge pair.
+    Closer(FeaturePair),
+}
+
+/// Settled on two nearly parallel edges, the walk measured the middle of their overlap,
+/// but along edges at an angle α the distance changes by α·length across the overlap: on
+/// edges 2·10¹⁰·δ long an α of 5·10⁻¹¹ hides a contact 0.5·δ deep at one end. The minimum
+/// of two segments that do not cross is at an end point of one of them; from there the
+/// walk goes on (a neighbouring edge may be closer still, if it turns away from the other
+/// polygon by less than α).
+fn overlap_end(
+    a: &Posed,
+    i: usize,
+    b: &Posed,
+    j: usize,
+    (middle, floor): (f64, f64),
+    tol: &WalkTolerances,
+) -> OverlapEnd {
+    let (p0, p1) = (a.vertex(i), a.vertex(a.next(i)));
+    let (q0, q1) = (b.vertex(j), b.vertex(b.next(j)));
+    // The middle's distance is to the line of edge j; along edge i that changes by at most
+    // |cross| / |edge j|. Within the floor (most often: exactly parallel faces) nothing is
+    // closer, and no square root is needed to tell.
+    let (c, slack) = (cross(&(p1 - p0), &(q1 - q0)), middle - floor);
+    if c * c <= slack * slack * (q1 - q0).norm_squared() {
+        return OverlapEnd::Middle;
+    }
+    if !nearly_parallel(&p0, &p1, &q0, &q1, tol.parallel_tol) {
+        return OverlapEnd::Middle;
+    }
+    if let Some(x) = crossing(&p0, &p1, &q0, &q1) {
+        return OverlapEnd::Cross(x);
+    }
+    let (end, pa, pb) = closest_ends(&p0, &p1, &q0, &q1);
+    // Exactly parallel edges differ by rounding only: keep the middle, whose features the
+    // warm start keeps too.
+    if (pb - pa).norm() >= floor {
+        return OverlapEnd::Middle;
+    }
+    let (fa, fb) = match end {
+        0 => (Feature::Vertex(i), Feature::Edge(j)),
+        1 => (Feature::Vertex(a.next(i)), Feature::Edge(j)),
+        2 => (Feature::Edge(i), Feature::Vertex(j)),
+        _ => (Feature::Edge(i), Feature::Vertex(b.next(j))),
+    };
+    OverlapEnd::Closer(FeaturePair { a: fa, b: fb })
 }
 
 /// The vertices of A and B that reach furthest towards each other along the centre line.

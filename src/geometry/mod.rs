@@ -18,7 +18,7 @@ mod segment;
 pub use brute_force::brute_force_distance;
 pub use feature::{Feature, FeaturePair};
 pub use lin_canny::{closest_features, Distance, WalkTolerances};
-pub use polygon::{ConvexPolygon, PolygonError, PolygonWarning};
+pub use polygon::{ConvexPolygon, PolygonError, PolygonWarning, RepairShift};
 pub use posed::Posed;
 
 /// A point or vector of the plane.

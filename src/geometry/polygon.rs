@@ -1,5 +1,6 @@
 //! The validated convex polygon.
 
+use super::segment::project_on_segment;
 use super::{cross, Vec2};
 use std::f64::consts::TAU;
 
@@ -71,6 +72,20 @@ pub struct ConvexPolygon {
     vertices: Vec<Vec2>,
     normals: Vec<Vec2>,
     radius: f64,
+    repair: Option<RepairShift>,
+}
+
+/// How far the removal of repeated and collinear vertices moved the boundary: the input
+/// vertex removed farthest from the polygon kept, and that distance (length units of the
+/// shape). The tolerance that judged them is relative to the polygon's size, so on a
+/// polygon 10¹¹·δ long it reaches δ: whoever knows δ refuses a shift that matters
+/// (`cell::check_precision`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RepairShift {
+    /// Input index of the removed vertex.
+    pub vertex: usize,
+    /// Its distance from the boundary of the polygon kept.
+    pub distance: f64,
 }
 
 impl ConvexPolygon {
@@ -184,7 +199,44 @@ impl ConvexPolygon {
             return Err(PolygonError::NotConvex { vertex: pts[0].0 });
         }
         let vertices: Vec<Vec2> = pts.into_iter().map(|(_, p)| p).collect();
-        Ok((Self::from_ccw(vertices), warnings))
+        let mut polygon = Self::from_ccw(vertices);
+        polygon.repair = Self::shift_of(&polygon.vertices, points, &warnings);
+        Ok((polygon, warnings))
+    }
+
+    /// The removed vertex farthest from the boundary of `kept`, if any was removed.
+    fn shift_of(
+        kept: &[Vec2],
+        points: &[[f64; 2]],
+        warnings: &[PolygonWarning],
+    ) -> Option<RepairShift> {
+        let n = kept.len();
+        let from_boundary = |p: Vec2| {
+            (0..n)
+                .map(|k| {
+                    let (a, b) = (kept[k], kept[(k + 1) % n]);
+                    let s = project_on_segment(&p, &a, &b);
+                    (a + (b - a) * s - p).norm()
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        warnings
+            .iter()
+            .filter_map(|w| match w {
+                PolygonWarning::RepeatedVertex(i) | PolygonWarning::CollinearVertex(i) => Some(*i),
+                PolygonWarning::Reversed => None,
+            })
+            .map(|i| RepairShift {
+                vertex: i,
+                distance: from_boundary(Vec2::new(points[i][0], points[i][1])),
+            })
+            .max_by(|x, y| x.distance.total_cmp(&y.distance))
+    }
+
+    /// How far the repairs of [`ConvexPolygon::new`] moved the boundary, if it removed a
+    /// vertex.
+    pub fn repair_shift(&self) -> Option<RepairShift> {
+        self.repair
     }
 
     /// Builds from vertices already known to be strictly convex and counter-clockwise.
@@ -201,13 +253,17 @@ impl ConvexPolygon {
             vertices,
             normals,
             radius,
+            repair: None,
         }
     }
 
     /// The same polygon with `offset` subtracted from every vertex: its frame origin moves to
     /// `offset`. Obstacles use it to centre their bounding disc on their own centroid.
     pub fn translated(&self, offset: &Vec2) -> Self {
-        Self::from_ccw(self.vertices.iter().map(|v| v - offset).collect())
+        Self {
+            repair: self.repair,
+            ..Self::from_ccw(self.vertices.iter().map(|v| v - offset).collect())
+        }
     }
 
     /// Area centroid.

@@ -9,7 +9,10 @@
 //! implementation (GJK), as a cross-check of the witness.
 
 mod contact_shapes;
+mod convexity;
 mod input;
+mod long_edges;
+mod precision;
 mod scale;
 mod tiny_delta;
 

@@ -5,7 +5,8 @@
 //! The oracle shares no code with the library: it places the vertices itself, takes the
 //! smallest vertex-to-edge distance in both directions, and decides overlap by a
 //! point-in-polygon test (either way round) and a segment-intersection test over all edge
-//! pairs. It computes on plain arrays rather than nalgebra (the test profile is
+//! pairs, with orientations exact in sign (the `robust` crate), so that its overlap verdict
+//! is exact for the vertices as placed. It computes on plain arrays rather than nalgebra (the test profile is
 //! unoptimised, and `checker_props` runs it on thousands of instants per scene), and reads
 //! vertices given as `[f64; 2]` or as `Vec2`.
 
@@ -14,7 +15,7 @@
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use proptest::test_runner::TestRunner;
+use proptest::test_runner::{FileFailurePersistence, RngSeed, TestRunner};
 use std::f64::consts::{PI, TAU};
 use std::ops::{Range, RangeInclusive};
 use workcell::geometry::{ConvexPolygon, Vec2};
@@ -116,9 +117,12 @@ pub fn lerp_pose(p: [f64; 4], q: [f64; 4], u: f64) -> [f64; 3] {
 // Independent oracle
 // ---------------------------------------------------------------------------------------
 
+/// Twice the signed area of triangle abc, exact in sign (Shewchuk's adaptive predicate):
+/// a plain cross product gives ±4·10⁻¹⁶ for collinear points, and the oracle then took
+/// collinear disjoint edges for crossing ones.
 fn orient(a: Pt, b: Pt, c: Pt) -> f64 {
-    let (u, v) = (sub(b, a), sub(c, a));
-    u[0] * v[1] - u[1] * v[0]
+    let at = |p: Pt| robust::Coord { x: p[0], y: p[1] };
+    robust::orient2d(at(a), at(b), at(c))
 }
 
 fn point_segment(p: Pt, a: Pt, b: Pt) -> f64 {
@@ -358,6 +362,18 @@ pub fn polygon(s: &[Pt]) -> ConvexPolygon {
     ConvexPolygon::new(s)
         .unwrap_or_else(|e| panic!("generated polygon refused: {e}: {s:?}"))
         .0
+}
+
+/// The configuration of every property test: `cases` cases from a fixed seed, after the
+/// failures ever found, which are kept beside the test file (`NAME.proptest-regressions`).
+pub fn proptest_config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        rng_seed: RngSeed::Fixed(0x5eed_0013),
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
+            "proptest-regressions",
+        ))),
+        ..ProptestConfig::with_cases(cases)
+    }
 }
 
 /// One value of `strategy`, outside of a property (no shrinking).
