@@ -10,7 +10,8 @@
 //! makespan (a lower bound of every collision-free makespan when it is proven optimal,
 //! marked *), the makespan found and its overhead, the rounds along the answer's branch and
 //! the schedules checked, and the wall time of the solve (planning included). The last
-//! rows give each family's mean overhead over the cells solved.
+//! rows give each family's mean overhead over the cells solved and, with `--greedy`, over the
+//! cells both feedbacks solve.
 
 use std::path::Path;
 use std::time::Instant;
@@ -123,7 +124,10 @@ fn print(rows: &[Row], feedbacks: &[Feedback]) {
         );
         for run in &row.runs {
             match (run.makespan, overhead(run, row.blind)) {
-                (Some(m), Some(o)) => line += &format!(" {m:.2} | {o:.1} % |"),
+                (Some(m), Some(o)) => {
+                    let o = if o.abs() < 0.05 { 0.0 } else { o };
+                    line += &format!(" {m:.2} | {o:.1} % |")
+                }
                 _ => line += " not solved | |",
             }
             line += &format!(" {} / {} | {:.2} |", run.rounds, run.nodes, run.seconds);
@@ -131,11 +135,17 @@ fn print(rows: &[Row], feedbacks: &[Feedback]) {
         println!("{line}");
     }
     println!();
+    let pct = |v: f64| format!("{:.1} %", if v.abs() < 0.05 { 0.0 } else { v });
+    let mean = |v: &[f64]| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
     let mut head = "| family |".to_owned();
     let mut rule = "|---|".to_owned();
     for f in feedbacks {
         head += &format!(" {} solved | mean overhead |", name(f));
         rule += "---:|---:|";
+    }
+    if feedbacks.len() > 1 {
+        head += " mean overhead where all solve |";
+        rule += "---:|";
     }
     println!("{head}\n{rule}");
     let mut families: Vec<&str> = rows.iter().map(|r| r.family).collect();
@@ -152,8 +162,24 @@ fn print(rows: &[Row], feedbacks: &[Feedback]) {
                 .iter()
                 .filter_map(|r| overhead(&r.runs[i], r.blind))
                 .collect();
-            let mean = solved.iter().sum::<f64>() / solved.len().max(1) as f64;
-            line += &format!(" {} of {} | {mean:.1} % |", solved.len(), of.len());
+            let m = mean(&solved).map_or("–".to_owned(), pct);
+            line += &format!(" {} of {} | {m} |", solved.len(), of.len());
+        }
+        if feedbacks.len() > 1 {
+            let all: Vec<&&Row> = of
+                .iter()
+                .filter(|r| r.runs.iter().all(|run| run.makespan.is_some()))
+                .collect();
+            let each: Vec<String> = (0..feedbacks.len())
+                .map(|i| {
+                    let v: Vec<f64> = all
+                        .iter()
+                        .filter_map(|r| overhead(&r.runs[i], r.blind))
+                        .collect();
+                    mean(&v).map_or("–".to_owned(), pct)
+                })
+                .collect();
+            line += &format!(" {} ({} cells) |", each.join(" vs "), all.len());
         }
         println!("{line}");
     }

@@ -7,10 +7,11 @@
 //!    on the bounds and the moves known so far; the moves of its plan are then planned, and
 //!    it runs again until every move of its plan is exact.
 //! 3. [`WcpGraph`]: the petgraph graph of the travel times, exact or bounds, for export.
-//! 4. [`solve`]: the loop. Each round times the sequences into a [`Schedule`], checks every
-//!    pair with [`crate::collision::check`] and feeds the first collision back: either the
-//!    sequencer re-plans with the two colliding steps forbidden together, or one robot waits
-//!    until the other's activity is over, whichever gives the smaller makespan.
+//! 4. [`solve`]: the feedback loop. Each schedule (routes and their [`legs`]) is timed into a
+//!    [`Schedule`] and checked pair by pair with [`crate::collision::check`]; a collision
+//!    branches a search over remedies (re-sequencing, waits, pauses, slower moves, detours,
+//!    stepping aside) until the checker certifies a schedule; `--feedback greedy` keeps the
+//!    former loop (re-sequence or wait, the better each round).
 //! 5. [`evaluate`]: the same schedule and check for sequences given by the user.
 
 mod evaluate;
