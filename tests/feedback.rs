@@ -202,6 +202,21 @@ fn a_detour_goes_round_a_robot_that_is_working() {
 }
 
 #[test]
+fn robots_pass_side_by_side_in_a_wide_corridor() {
+    // Two tasks each on the far side of a corridor 2.4 wide: they swap there and back.
+    let cell = conflict_cell(ConflictKind::CorridorWide, 1);
+    let solved = solve(&cell);
+    assert_certified_within_limits(&cell, &solved);
+    assert!(remedies(&solved)
+        .iter()
+        .any(|r| matches!(r, Remedy::Detour { .. })));
+    assert!(solved.schedule.makespan <= solved.blind_makespan * 1.01);
+    // One at a time, as in a narrow corridor, costs far more.
+    let without = solve_with(&cell, &all_but("detour"));
+    assert!(without.schedule.makespan > solved.schedule.makespan * 1.02);
+}
+
+#[test]
 fn a_pause_on_the_way_or_a_slower_move_each_separate_a_crossing() {
     let cell = conflict_cell(ConflictKind::CorridorWide, 2);
     let paused = solve_with(&cell, &only(&["pause"]));

@@ -43,6 +43,9 @@ const PARK_RINGS: [f64; 5] = [2.0, 3.0, 4.5, 6.5, 9.0];
 const PARK_DIRECTIONS: usize = 12;
 /// Parking poses examined in full (planned, timed, checked) per remedy, nearest first.
 const PARK_TRIES: usize = 3;
+/// Half-width of the short detour window about the contact, in the time the detouring
+/// robot takes at full speed to cover the two robots' radii summed.
+const DETOUR_REACH: f64 = 2.0;
 /// Samples of a moving robot per convex piece of the region it sweeps (a detour's
 /// obstacle).
 const SWEEP_CHUNK: usize = 8;
@@ -649,45 +652,64 @@ fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     }
     let xs = &view.robots[side.x];
     let (t0, t1) = leg_window(xs, m);
-    let (w0, w1) = match side.sy.activity {
+    // Where the other robot is to be gone round: all it sweeps while both move (or where it
+    // stands); and, when it moves, only where it is about the contact, so that two robots
+    // can pass side by side where the first would close a whole corridor.
+    let mut windows = vec![match side.sy.activity {
         Activity::Move { .. } => (side.sy.start.max(t0), side.sy.end.min(t1)),
-        // Standing: the whole of the leg's window.
         _ => (t0, t1),
-    };
-    let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
+    }];
+    if matches!(side.sy.activity, Activity::Move { .. }) {
+        let robot = &ctx.cell.robots[side.x];
+        let reach = robot.shape.radius() + ctx.cell.robots[side.y].shape.radius();
+        let tau = DETOUR_REACH * reach / robot.max_speed;
+        let (w0, w1) = windows[0];
+        let near = ((side.t - tau).max(w0), (side.t + tau).min(w1));
+        if near != windows[0] {
+            windows.push(near);
+        }
+    }
     let (from, to) = leg_nodes(view, side.x, m);
     let (a, b) = (
         node_pose(ctx.cell, side.x, from),
         node_pose(ctx.cell, side.x, to),
     );
-    let motion = ctx.plan(side.x, a, b, &region)?;
     let current = pieces_of(ctx, view, side.x, m)?;
-    if matches!(current.as_slice(), [Piece::Go { motion: old, .. }] if old.path == motion.path) {
-        return None;
-    }
     let old = leg(view.legs, side.x, m).clone();
-    let new = Leg {
-        pieces: Some(
-            vec![Piece::Go {
-                motion: motion.clone(),
-                scale: 1.0,
-            }]
-            .into(),
-        ),
-        ..old
-    };
-    let s = ctx.rebuild(view, side.x, m, &new)?;
-    let window = (t0, side.window_end(&s, m));
-    let ok = clears(
-        ctx.cell,
-        (side.x, &s),
-        (side.y, &view.robots[side.y]),
-        window,
-        &ctx.opts.check,
-    );
-    if !ok {
-        return None;
-    }
+    let tried = windows.into_iter().filter_map(|(w0, w1)| {
+        let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
+        let motion = ctx.plan(side.x, a, b, &region)?;
+        if matches!(current.as_slice(), [Piece::Go { motion: old, .. }] if old.path == motion.path)
+        {
+            return None;
+        }
+        let new = Leg {
+            pieces: Some(
+                vec![Piece::Go {
+                    motion: motion.clone(),
+                    scale: 1.0,
+                }]
+                .into(),
+            ),
+            ..old.clone()
+        };
+        let s = ctx.rebuild(view, side.x, m, &new)?;
+        let window = (t0, side.window_end(&s, m));
+        let ys = &view.robots[side.y];
+        clears(
+            ctx.cell,
+            (side.x, &s),
+            (side.y, ys),
+            window,
+            &ctx.opts.check,
+        )
+        .then_some((s.end, motion, new, s))
+    });
+    // The earliest end; on ties the first window tried.
+    let (_, motion, new, s) = tried.fold(None, |best: Option<(f64, _, _, _)>, c| match best {
+        Some(b) if b.0 <= c.0 => Some(b),
+        _ => Some(c),
+    })?;
     let remedy = Remedy::Detour {
         robot: side.x,
         leg: m,
