@@ -121,7 +121,12 @@ fn every_conflict_family_is_solved_without_divergence() {
             ConflictKind::Junction => 0.40,
             _ => f64::INFINITY,
         };
-        assert!(overhead(&solved) <= target, "{}: {:.3}", kind.name(), overhead(&solved));
+        assert!(
+            overhead(&solved) <= target,
+            "{}: {:.3}",
+            kind.name(),
+            overhead(&solved)
+        );
         assert!(
             solved.iterations[0].collision.is_some(),
             "{}: the blind schedule collides",

@@ -342,9 +342,7 @@ pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<Exit
             "the schedule collides: {}",
             wcp::describe(&cell, c)
         )),
-        (None, false) => {
-            Some("the checker cannot certify the schedule: two bodies graze delta".to_owned())
-        }
+        (None, false) => Some(wcp::uncertified(&evaluated.report)),
         (None, true) => None,
     };
     let text = if out.json {

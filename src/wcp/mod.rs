@@ -28,8 +28,9 @@ pub mod sequencer;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
-    describe, prepare, sequencer_error, solve, Feedback, Iteration, Planning, Prepared, Progress,
-    Remedies, Remedy, SearchOptions, SolveOptions, Solved, StageTimes, AUTO_ALL_MAX_MOVES,
+    describe, prepare, sequencer_error, solve, uncertified, Feedback, Iteration, Planning,
+    Prepared, Progress, Remedies, Remedy, SearchOptions, SolveOptions, Solved, StageTimes,
+    AUTO_ALL_MAX_MOVES,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,

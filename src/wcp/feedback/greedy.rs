@@ -68,9 +68,7 @@ pub fn solve(
                         .to_owned(),
                 )
             } else {
-                (!report.certified).then(|| {
-                    "the checker cannot certify the schedule: two bodies graze delta".to_owned()
-                })
+                (!report.certified).then(|| super::uncertified(&report))
             };
             return done(failure, iterations, times);
         };

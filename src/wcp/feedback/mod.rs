@@ -372,6 +372,19 @@ fn build_error(cell: &Cell, e: BuildError) -> InputError {
     }
 }
 
+/// Why the checker did not certify a schedule in which it found no collision: its work
+/// budget ran out on a pair, or two bodies graze δ too closely to prove either way.
+pub fn uncertified(report: &CheckReport) -> String {
+    match &report.budget_exhausted {
+        Some(b) => format!(
+            "the checker spent its work budget ({} evaluations) on {} and {} after t = {:.6} \
+             without a proof or a witness",
+            b.work, b.bodies[0], b.bodies[1], b.time
+        ),
+        None => "the checker cannot certify the schedule: two bodies graze delta".to_owned(),
+    }
+}
+
 /// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
 pub fn describe(cell: &Cell, c: &Collision) -> String {
     let a = format!(
