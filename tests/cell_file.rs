@@ -248,3 +248,42 @@ fn sequences_are_checked_against_the_cell() {
         assert_eq!(e.file, file);
     }
 }
+
+/// A record written as an array of its field values (serde's sequence form of a struct) is
+/// refused, not read positionally (issue 13, item 7).
+#[test]
+fn records_written_as_arrays_are_refused() {
+    let square = "[[-0.3,-0.3],[0.3,-0.3],[0.3,0.3],[-0.3,0.3]]";
+    let good_robot = robot("R1", "[0, 0]");
+    let cases = [
+        (
+            cell(
+                &format!(r#"["R1", {square}, [0, 0], 1.0, 2.0, 1.5]"#),
+                "",
+                "",
+            ),
+            "robots[0]",
+            "a robot: an object",
+        ),
+        (
+            cell(&good_robot, r#"["wall", [[2,-1],[3,-1],[3,1],[2,1]]]"#, ""),
+            "obstacles[0]",
+            "an obstacle: an object",
+        ),
+        (
+            cell(&good_robot, "", r#"["t1", [1, 2], 1.0]"#),
+            "tasks[0]",
+            "a task: an object",
+        ),
+        (
+            format!(r#"[0.01, [{good_robot}], [], []]"#),
+            "",
+            "a cell: an object",
+        ),
+    ];
+    for (text, field, reason) in cases {
+        let e = refused(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert!(e.reason.contains(reason), "{e}");
+    }
+}

@@ -221,6 +221,33 @@ fn bad_trajectories_and_documents_are_refused() {
     refused("not-an-object", "[]", &["a scene: an object with `robots`"]);
 }
 
+/// serde reads a struct from an array of its fields too: `[t, x, y, theta]` was taken as
+/// t, x, y, vx with θ = 0. Only the documented objects are accepted (issue 13, item 7).
+#[test]
+fn records_written_as_arrays_are_refused() {
+    let good = two_squares(10.0);
+    refused(
+        "sample-array",
+        &good.replace(r#"{"t": 1, "x": 10, "y": 0}"#, "[1, 10, 0, 1.5]"),
+        &["\"A\"", "robots[0].trajectory[1]", "a sample: an object"],
+    );
+    let b = format!(
+        r#"{{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 5, "y": 0}}]}}"#
+    );
+    let a_as_array =
+        format!(r#"["A", {SQUARE}, [{{"t": 0, "x": 0, "y": 0}}, {{"t": 1, "x": 10, "y": 0}}]]"#);
+    refused(
+        "robot-array",
+        &format!(r#"{{"robots": [{a_as_array}, {b}]}}"#),
+        &["robots[0]", "a robot: an object"],
+    );
+    refused(
+        "document-array",
+        &format!("[0.01, [{b}], []]"),
+        &["a scene: an object"],
+    );
+}
+
 #[test]
 fn missing_file_and_bad_options_exit_2() {
     let o = workcell(&["check", "/nonexistent/scene.json"]);

@@ -3,6 +3,7 @@
 
 mod cell_file;
 mod error;
+mod object_only;
 mod precision;
 mod scene_file;
 mod scene_writer;
