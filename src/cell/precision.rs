@@ -11,9 +11,13 @@ use std::path::Path;
 pub const MAX_COORDINATE_OVER_DELTA: f64 = (1u64 << 38) as f64;
 
 /// Refuses a scene whose coordinates are too large for δ to be resolved in f64, or whose
-/// horizon is longer than f64 holds. Fields are named as in the scene file (robots first,
-/// then obstacles, in file order).
+/// horizon is longer than f64 holds, and a δ that is not a positive number. Fields are named
+/// as in the scene file (robots first, then obstacles, in file order).
 pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), InputError> {
+    if !(delta.is_finite() && delta > 0.0) {
+        let reason = format!("must be a positive number, got {delta}");
+        return Err(InputError::new(file, None, "delta", reason));
+    }
     let limit = MAX_COORDINATE_OVER_DELTA * delta;
     let too_large = |value: f64, what: &str| {
         format!(

@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 use workcell::cell::{check_precision, load_scene, InputError};
-use workcell::collision::{check, CheckOptions, CheckReport};
+use workcell::collision::{check, validate, CheckOptions, CheckReport};
 
 /// Runs the check; the exit status is 0 collision-free, 1 collision.
 pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
@@ -15,6 +15,7 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
         opts.delta.unwrap_or(loaded.scene.delta),
         path,
     )?;
+    validate(&loaded.scene, opts).map_err(|e| e.in_file(path))?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }

@@ -5,10 +5,14 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use workcell::cell::{check_precision, load_scene, InputError};
-use workcell::compare::{chart, compare, Comparison, Contender, NamedScene, REFERENCE_TIME_TOL};
+use workcell::compare::{
+    chart, compare, default_contenders, validate_contenders, Comparison, Contender, NamedScene,
+    REFERENCE_TIME_TOL,
+};
 
 /// Compares `contenders` on the scenes in `inputs` (files, or folders whose `*.json` files
-/// are read, cell files `*-cell.json` aside). Exit 0, or 2 on unusable input.
+/// are read, cell files `*-cell.json` aside). Exit 0, or 2 on unusable input or a method
+/// given that cannot check one of the scenes.
 pub fn run_compare(
     inputs: &[PathBuf],
     contenders: &[Contender],
@@ -24,6 +28,11 @@ pub fn run_compare(
             name: file.display().to_string(),
             scene: loaded.scene,
         });
+    }
+    // The defaults skip a scene they cannot check (counted unsupported); a method the user
+    // named is refused.
+    if contenders != default_contenders() {
+        validate_contenders(&scenes, contenders)?;
     }
     let bar =
         ProgressBar::with_draw_target(Some(scenes.len() as u64), ProgressDrawTarget::stderr());

@@ -22,9 +22,10 @@ mod scene;
 mod stats;
 
 pub use broad_phase::candidate_pairs;
-pub use check::{check, CheckOptions, CheckReport, Contact, PairStats};
+pub use check::{check, try_check, validate, CheckOptions, CheckReport, Contact, PairStats};
 pub use method::Method;
 #[cfg(feature = "parry-peer")]
 pub use peer::{check_with_parry, PeerReport};
+pub use sampled::MAX_SAMPLED_LOOKS;
 pub use scene::{Body, Scene};
 pub use stats::Stats;
