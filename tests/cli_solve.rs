@@ -267,3 +267,110 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
         std::fs::write(&document, &out.stdout).unwrap();
     }
 }
+
+/// The feedback cell with `edit` applied, written to a per-test file.
+fn edited_cell(test: &str, edit: impl FnOnce(&mut Value)) -> PathBuf {
+    let text = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
+    let mut cell: Value = serde_json::from_str(&text).unwrap();
+    edit(&mut cell);
+    let path = temp(test, "cell.json");
+    std::fs::write(&path, cell.to_string()).unwrap();
+    path
+}
+
+/// Writes a sequences document to a per-test file.
+fn sequences_file(test: &str, doc: &Value) -> PathBuf {
+    let path = temp(test, "sequences.json");
+    std::fs::write(&path, doc.to_string()).unwrap();
+    path
+}
+
+/// Asserts exit status 2 and that stderr names `file` and every one of `needles`.
+fn refused_naming(out: &Output, file: &Path, needles: &[&str]) {
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}{}", text(&out.stdout));
+    assert!(
+        err.contains(&format!("error: {}: ", file.display())),
+        "not about {}: {err}",
+        file.display()
+    );
+    for n in needles {
+        assert!(err.contains(n), "`{n}` missing from {err}");
+    }
+}
+
+/// All four tasks done by R1, in file order.
+fn r1_does_everything() -> Value {
+    serde_json::json!({"R1": ["weld-1", "weld-2", "weld-3", "weld-4"]})
+}
+
+/// A subnormal limit made `evaluate` panic ("schedules sample increasing times:
+/// NotFinite"); both commands now refuse the cell, naming the limit (issue 13, item 4).
+#[test]
+fn subnormal_limits_are_refused_by_solve_and_evaluate() {
+    let sequences = sequences_file("subnormal", &r1_does_everything());
+    for field in ["max_speed", "max_accel", "max_turn_rate"] {
+        for value in [5e-324, 1e-310] {
+            let cell = edited_cell("subnormal", |c| c["robots"][0][field] = value.into());
+            let named = format!("robots[0].{field}");
+            let out = workcell(&["solve", cell.to_str().unwrap()]);
+            refused_naming(&out, &cell, &["\"R1\"", &named, "subnormal"]);
+            let out = workcell(&[
+                "evaluate",
+                cell.to_str().unwrap(),
+                sequences.to_str().unwrap(),
+            ]);
+            refused_naming(&out, &cell, &["\"R1\"", &named, "subnormal"]);
+        }
+    }
+}
+
+/// With `max_speed` 1e-20 a task of 1000 s sat at [2e20, 2e20] and `solve` exited 0; now
+/// the cell is refused when read, naming the duration and the slow robot (issue 13, item 5).
+#[test]
+fn tasks_the_time_axis_cannot_hold_are_refused() {
+    for slow in [1e-20, 1e-300] {
+        let cell = edited_cell("vanishing", |c| {
+            c["robots"][0]["max_speed"] = slow.into();
+            c["tasks"][0]["duration"] = 1000.0.into();
+            for task in c["tasks"].as_array_mut().unwrap() {
+                task["robots"] = serde_json::json!(["R1"]);
+            }
+        });
+        let out = workcell(&["solve", cell.to_str().unwrap()]);
+        refused_naming(&out, &cell, &["\"weld-1\"", "tasks[0].duration", "\"R1\""]);
+        let sequences = sequences_file("vanishing", &r1_does_everything());
+        let out = workcell(&[
+            "evaluate",
+            cell.to_str().unwrap(),
+            sequences.to_str().unwrap(),
+        ]);
+        refused_naming(&out, &cell, &["tasks[0].duration"]);
+    }
+}
+
+/// A task of 1e300 leaves no room for the moves after it: `evaluate` blamed the sequences
+/// file (field `R1`); it names the cell's `tasks[2].duration`, and a wait of 1e300 in a
+/// solve result is blamed on that wait (issue 13, item 8).
+#[test]
+fn a_time_axis_too_long_is_blamed_on_what_stretched_it() {
+    let cell = edited_cell("blame", |c| c["tasks"][2]["duration"] = 1e300.into());
+    let solved = workcell(&["solve", &shipped("feedback-cell.json"), "--json"]);
+    let mut result = json(&solved);
+    let sequences = sequences_file("blame", &result);
+    let out = workcell(&[
+        "evaluate",
+        cell.to_str().unwrap(),
+        sequences.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &cell, &["\"weld-3\"", "tasks[2].duration", "1e300"]);
+
+    result["waits"][0]["duration"] = 1e300.into();
+    let sequences = sequences_file("blame-wait", &result);
+    let out = workcell(&[
+        "evaluate",
+        &shipped("feedback-cell.json"),
+        sequences.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &sequences, &["\"R2\"", "waits[0].duration", "1e300"]);
+}

@@ -353,6 +353,7 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
         });
     }
 
+    super::time_axis::check_time_axis(file, &robots, &tasks)?;
     let cell = Cell {
         file: file.to_path_buf(),
         delta,

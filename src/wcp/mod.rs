@@ -19,6 +19,7 @@ mod picture;
 pub mod report;
 mod schedule;
 pub mod sequencer;
+mod time_axis;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
@@ -34,3 +35,4 @@ pub use schedule::{
     route_nodes, Activity, BuildError, Collision, Delay, MoveCache, RobotSchedule, Schedule,
     Segment,
 };
+pub use time_axis::{culprit, Misplaced, Stretch};
