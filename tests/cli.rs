@@ -337,3 +337,20 @@ fn shipped_cells_give_their_expected_verdicts() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
+
+/// `compare --svg` never replaces one of the scenes it reads (issue 13, item 10).
+#[test]
+fn compare_refuses_to_draw_over_a_scene() {
+    let path = scene_file("compare-over", &two_squares(3.0));
+    let o = workcell(&[
+        "compare",
+        path.to_str().unwrap(),
+        "--methods",
+        "adaptive",
+        "--svg",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("input file"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), two_squares(3.0));
+}

@@ -374,3 +374,100 @@ fn a_time_axis_too_long_is_blamed_on_what_stretched_it() {
     ]);
     refused_naming(&out, &sequences, &["\"R2\"", "waits[0].duration", "1e300"]);
 }
+
+/// On a full disk `--export-scene` left a truncated file. Exports now go to a temporary file
+/// beside the target, renamed once whole: the previous file stays, and nothing else is left
+/// (issue 13, item 10). A file-size limit (`ulimit -f`, its signal ignored) stands in for
+/// the full disk.
+#[cfg(unix)]
+#[test]
+fn an_export_that_cannot_be_written_whole_leaves_the_previous_file() {
+    let scene = temp("full-disk", "scene.json");
+    let folder = scene.parent().unwrap();
+    std::fs::write(&scene, "previous").unwrap();
+    let out = Command::new("sh")
+        .args(["-c", r#"trap '' XFSZ; ulimit -f 4; exec "$0" "$@""#])
+        .arg(env!("CARGO_BIN_EXE_workcell"))
+        .args(["solve", &shipped("paper-cell.json"), "--export-scene"])
+        .arg(&scene)
+        .output()
+        .expect("sh runs");
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("cannot write the file"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), "previous");
+    let left: Vec<_> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, ["scene.json"], "no temporary file is left behind");
+    // Without the limit the export replaces the file, readable as before.
+    let out = workcell(&[
+        "solve",
+        &shipped("paper-cell.json"),
+        "--export-scene",
+        scene.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(std::fs::read_to_string(&scene).unwrap().starts_with('{'));
+}
+
+/// `--export-scene` given the input cell's path overwrote it; an output that names an input,
+/// however spelled, or another output, is refused before any work (issue 13, item 10).
+#[test]
+fn an_output_path_that_is_an_input_is_refused() {
+    let cell = temp("overwrite", "cell.json");
+    let original = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
+    std::fs::write(&cell, &original).unwrap();
+    let folder = cell.parent().unwrap();
+    let respelled = folder
+        .join("..")
+        .join(folder.file_name().unwrap())
+        .join("cell.json");
+    let mut spellings = vec![cell.clone(), respelled];
+    #[cfg(unix)]
+    {
+        let link = folder.join("link.json");
+        let _ = std::fs::remove_file(&link);
+        std::os::unix::fs::symlink(&cell, &link).unwrap();
+        spellings.push(link);
+    }
+    let cell_arg = cell.to_str().unwrap();
+    for output in &spellings {
+        for option in ["--export-scene", "--svg", "--export-graph"] {
+            let out = workcell(&["solve", cell_arg, option, output.to_str().unwrap()]);
+            refused_naming(&out, output, &[option, "input file"]);
+        }
+    }
+    let sequences = sequences_file(
+        "overwrite",
+        &serde_json::json!({"R1": ["weld-1", "weld-2", "weld-3", "weld-4"]}),
+    );
+    let out = workcell(&[
+        "evaluate",
+        cell_arg,
+        sequences.to_str().unwrap(),
+        "--svg",
+        sequences.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &sequences, &["--svg", "input file"]);
+    let both = folder.join("both.json");
+    let out = workcell(&[
+        "solve",
+        cell_arg,
+        "--export-scene",
+        both.to_str().unwrap(),
+        "--svg",
+        both.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &both, &["--svg", "same file as `--export-scene`"]);
+    assert_eq!(
+        std::fs::read_to_string(&cell).unwrap(),
+        original,
+        "the cell is untouched"
+    );
+    assert!(!both.exists());
+}

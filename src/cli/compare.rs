@@ -20,6 +20,10 @@ pub fn run_compare(
     json: bool,
 ) -> Result<ExitCode, InputError> {
     let files = scene_files(inputs)?;
+    if let Some(svg) = svg {
+        let inputs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+        super::output::check_outputs(&inputs, &[("--svg", svg)])?;
+    }
     let mut scenes = Vec::with_capacity(files.len());
     for file in &files {
         let loaded = load_scene(file)?;
@@ -42,12 +46,7 @@ pub fn run_compare(
     let comparison = compare(&scenes, contenders, |done| bar.set_position(done as u64));
     bar.finish_and_clear();
     if let Some(path) = svg {
-        std::fs::write(path, chart(&comparison)).map_err(|e| InputError {
-            file: path.to_path_buf(),
-            body: None,
-            field: String::new(),
-            reason: format!("cannot write the chart: {e}"),
-        })?;
+        super::output::write_file(path, chart(&comparison).as_bytes())?;
     }
     let text = if json {
         serde_json::to_string_pretty(&comparison).expect("a comparison serialises") + "\n"

@@ -85,8 +85,7 @@ pub fn run_generate(
         };
         let text = serde_json::to_string_pretty(&doc).expect("a document serialises") + "\n";
         let file = out.join(name);
-        std::fs::write(&file, text)
-            .map_err(|e| fail(&file, format!("cannot write the file: {e}")))?;
+        super::output::write_file(&file, text.as_bytes())?;
         // A closed pipe (`| head`) is the reader's choice, not an error of ours.
         let _ = writeln!(stdout, "{}", file.display());
     }
