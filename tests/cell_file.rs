@@ -326,6 +326,24 @@ fn limits_and_durations_off_the_time_axis_are_refused() {
         &task1.replace("1.0", "1e-16"),
     ));
     assert_eq!(e.field, "tasks[0].duration", "{e}");
+    // Found by the fuzz test: max_accel 1e308 over a radius of 0.42 is an infinite angular
+    // acceleration, and the planner's angles came out NaN (a panic). Ratios of limits out
+    // of f64's normal range are refused.
+    for (field, bad) in [
+        ("max_accel", "1e308"),
+        ("max_speed", "1e-300"),
+        ("max_turn_rate", "1e-300"),
+    ] {
+        let text = cell(&robot("R1", "[0, 0]"), "", &task1)
+            .replace(r#""max_accel": 2.0"#, r#""max_accel": 1e10"#)
+            .replace(
+                &format!(r#""{field}": "#),
+                &format!(r#""{field}": {bad}, "x{field}": "#),
+            );
+        let e = parse_cell(&text, Path::new(FILE)).expect_err(bad);
+        assert_eq!(e.field, format!("robots[0].{field}"), "{e}");
+        assert!(e.reason.contains("normal f64"), "{e}");
+    }
     // A move whose time overflows f64 at normal limits.
     let far = cell(&robot("R1", "[0, 0]"), "", &task("t1", "[1e300, 0]", ""))
         .replace(r#""delta": 0.01"#, r#""delta": 1e290"#)

@@ -22,7 +22,8 @@ pub fn keeps_length(start: f64, length: f64) -> bool {
     length == 0.0 || 0.5 * (start + length) * f64::EPSILON <= TASK_LENGTH_TOL * length
 }
 
-/// Refuses limits that are subnormal, a robot whose fastest move to one of its tasks takes
+/// Refuses limits that are subnormal or whose ratios are not normal numbers, a robot whose
+/// fastest move to one of its tasks takes
 /// longer than f64 holds, and a task whose duration would not keep its length
 /// ([`keeps_length`]) at the earliest time one of its robots could start it. Fields are
 /// named as in the cell file.
@@ -46,6 +47,12 @@ pub(super) fn check_time_axis(
                     reason,
                 ));
             }
+        }
+    }
+    for (k, r) in robots.iter().enumerate() {
+        if let Some((field, reason)) = profile_out_of_range(r) {
+            let field = format!("robots[{k}].{field}");
+            return Err(InputError::new(file, Some(&r.name), field, reason));
         }
     }
     for (k, task) in tasks.iter().enumerate() {
@@ -87,6 +94,55 @@ pub(super) fn check_time_axis(
         }
     }
     Ok(())
+}
+
+/// The motion model's derived quantities that f64 must hold as normal numbers: the angular
+/// acceleration `max_accel / radius` and the two acceleration phases, `max_speed /
+/// max_accel` and `max_turn_rate` over the angular acceleration. Beyond, the planner's
+/// profiles overflow or vanish (an infinite angular acceleration gave NaN angles). Returns
+/// the limit to blame, the more extreme of the two in a ratio, and why.
+fn profile_out_of_range(r: &CellRobot) -> Option<(&'static str, String)> {
+    let normal = |q: f64| (f64::MIN_POSITIVE..f64::INFINITY).contains(&q);
+    let alpha = r.max_accel / r.shape.radius();
+    let extreme = |(fa, a): (&'static str, f64), (fb, b): (&'static str, f64)| {
+        if a.log10().abs() >= b.log10().abs() {
+            fa
+        } else {
+            fb
+        }
+    };
+    let checks = [
+        (
+            "max_accel / radius (the angular acceleration)",
+            alpha,
+            "max_accel",
+        ),
+        (
+            "max_speed / max_accel (the time to reach max_speed)",
+            r.max_speed / r.max_accel,
+            extreme(("max_speed", r.max_speed), ("max_accel", r.max_accel)),
+        ),
+        (
+            "max_turn_rate over the angular acceleration (the time to reach it)",
+            r.max_turn_rate / alpha,
+            extreme(
+                ("max_turn_rate", r.max_turn_rate),
+                ("max_accel", r.max_accel),
+            ),
+        ),
+    ];
+    checks
+        .into_iter()
+        .find(|&(_, q, _)| !normal(q))
+        .map(|(what, q, field)| {
+            let reason = format!(
+                "{what} is {q:e}, out of the range of normal f64 numbers [{:.1e}, {:.1e}]: the \
+             motion profiles would overflow or vanish; bring the limits closer together",
+                f64::MIN_POSITIVE,
+                f64::MAX
+            );
+            (field, reason)
+        })
 }
 
 fn limits(r: &CellRobot) -> [(&'static str, f64); 3] {
