@@ -240,6 +240,8 @@ fn sequences_are_checked_against_the_cell() {
         (r#"{"R1": ["t3"]}"#, "R1[0]", "no task"),
         (r#"{"R1": "t1"}"#, "R1", "list"),
         (r#"[1]"#, "", "object"),
+        // Found by `cargo fuzz run sequences_reader`: the empty key named no field.
+        (r#"{"": ["t1"]}"#, r#""""#, "no robot"),
     ];
     for (text, field, reason) in cases {
         let e = parse_sequences(text, file, &c).expect_err(text);

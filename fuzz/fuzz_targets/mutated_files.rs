@@ -12,7 +12,10 @@ libfuzzer_sys::fuzz_target!(|input: (u8, u64)| {
     let (which, seed) = input;
     let choice = which as usize % (SHIPPED.len() + 1);
     let (text, kind) = match SHIPPED.get(choice) {
-        Some(&(file, kind)) => (std::fs::read_to_string(common::cells().join(file)).unwrap(), kind),
+        Some(&(file, kind)) => (
+            std::fs::read_to_string(common::cells().join(file)).unwrap(),
+            kind,
+        ),
         None => (FEEDBACK_RESULT.to_owned(), Kind::Sequences),
     };
     let base: serde_json::Value = serde_json::from_str(&text).unwrap();

@@ -3,7 +3,9 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
-use workcell::geometry::{brute_force_distance, closest_features, ConvexPolygon, Posed, WalkTolerances};
+use workcell::geometry::{
+    brute_force_distance, closest_features, ConvexPolygon, Posed, WalkTolerances,
+};
 
 /// Coordinates of shapes and poses are kept within this, so that the tolerance below means
 /// something.
@@ -24,7 +26,10 @@ fn coordinate(v: i32) -> f64 {
 }
 
 fn polygon(points: &[(i32, i32)]) -> Option<ConvexPolygon> {
-    let points: Vec<[f64; 2]> = points.iter().map(|&(x, y)| [coordinate(x), coordinate(y)]).collect();
+    let points: Vec<[f64; 2]> = points
+        .iter()
+        .map(|&(x, y)| [coordinate(x), coordinate(y)])
+        .collect();
     ConvexPolygon::new(&points).ok().map(|(p, _)| p)
 }
 
@@ -41,9 +46,17 @@ libfuzzer_sys::fuzz_target!(|case: Case| {
     let exact = brute_force_distance(&pa, &pb).distance;
     let tol = 1e-9 * (EXTENT + a.radius() + b.radius());
     let cold = closest_features(&pa, &pb, None, &walk);
-    assert!((cold.distance - exact).abs() <= tol, "cold walk {} vs exact {exact}: {case:?}", cold.distance);
+    assert!(
+        (cold.distance - exact).abs() <= tol,
+        "cold walk {} vs exact {exact}: {case:?}",
+        cold.distance
+    );
     // Warm-started from the closest pair at another pose of `a`.
     let earlier = closest_features(&posed(&a, case.warm_from), &pb, None, &walk);
-    let warm = closest_features(&pa, &pb, Some(earlier.pair), &walk);
-    assert!((warm.distance - exact).abs() <= tol, "warm walk {} vs exact {exact}: {case:?}", warm.distance);
+    let warm = closest_features(&pa, &pb, Some(earlier.features), &walk);
+    assert!(
+        (warm.distance - exact).abs() <= tol,
+        "warm walk {} vs exact {exact}: {case:?}",
+        warm.distance
+    );
 });

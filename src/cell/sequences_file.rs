@@ -75,7 +75,7 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
     let mut seen = std::collections::HashSet::new();
     if let Some((robot, _)) = robots.iter().find(|(k, _)| !seen.insert(k.as_str())) {
         let reason = "the robot is listed twice".to_owned();
-        return Err(err(Some(robot), &format!("{prefix}{robot}"), reason));
+        return Err(err(Some(robot), &key_field(prefix, robot), reason));
     }
     let task_index: std::collections::HashMap<&str, usize> = cell
         .tasks
@@ -86,7 +86,7 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
     let mut routes = vec![Vec::new(); cell.robots.len()];
     let mut done_by: Vec<Option<String>> = vec![None; cell.tasks.len()];
     for (robot, list) in &robots {
-        let field = format!("{prefix}{robot}");
+        let field = key_field(prefix, robot);
         let Some(r) = cell.robots.iter().position(|x| &x.name == robot) else {
             let reason = "the cell has no robot of this name".to_owned();
             return Err(err(Some(robot), &field, reason));
@@ -136,6 +136,16 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
         _ => Vec::new(),
     };
     Ok(Sequences { routes, waits })
+}
+
+/// The field of a robot's list: its key, or `""` for the empty key (found by fuzzing: an
+/// empty key made an error that named no field).
+fn key_field(prefix: &str, robot: &str) -> String {
+    if robot.is_empty() {
+        format!("{prefix}\"\"")
+    } else {
+        format!("{prefix}{robot}")
+    }
 }
 
 /// An object's entries in document order, repeated keys kept, their values unparsed.
