@@ -240,6 +240,8 @@ fn sequences_are_checked_against_the_cell() {
         (r#"{"R1": ["t3"]}"#, "R1[0]", "no task"),
         (r#"{"R1": "t1"}"#, "R1", "list"),
         (r#"[1]"#, "", "object"),
+        // Found by `cargo fuzz run sequences_reader`: the empty key named no field.
+        (r#"{"": ["t1"]}"#, r#""""#, "no robot"),
     ];
     for (text, field, reason) in cases {
         let e = parse_sequences(text, file, &c).expect_err(text);
@@ -247,4 +249,118 @@ fn sequences_are_checked_against_the_cell() {
         assert!(e.reason.contains(reason), "{text}: {e}");
         assert_eq!(e.file, file);
     }
+}
+
+/// A record written as an array of its field values (serde's sequence form of a struct) is
+/// refused, not read positionally (issue 13, item 7).
+#[test]
+fn records_written_as_arrays_are_refused() {
+    let square = "[[-0.3,-0.3],[0.3,-0.3],[0.3,0.3],[-0.3,0.3]]";
+    let good_robot = robot("R1", "[0, 0]");
+    let cases = [
+        (
+            cell(
+                &format!(r#"["R1", {square}, [0, 0], 1.0, 2.0, 1.5]"#),
+                "",
+                "",
+            ),
+            "robots[0]",
+            "a robot: an object",
+        ),
+        (
+            cell(&good_robot, r#"["wall", [[2,-1],[3,-1],[3,1],[2,1]]]"#, ""),
+            "obstacles[0]",
+            "an obstacle: an object",
+        ),
+        (
+            cell(&good_robot, "", r#"["t1", [1, 2], 1.0]"#),
+            "tasks[0]",
+            "a task: an object",
+        ),
+        (
+            format!(r#"[0.01, [{good_robot}], [], []]"#),
+            "",
+            "a cell: an object",
+        ),
+    ];
+    for (text, field, reason) in cases {
+        let e = refused(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert!(e.reason.contains(reason), "{e}");
+    }
+}
+
+/// Limits and durations that f64 cannot place on one time axis are refused when the cell is
+/// read, naming the field (issue 13, items 4 and 5).
+#[test]
+fn limits_and_durations_off_the_time_axis_are_refused() {
+    let task1 = task("t1", "[1, 2]", "");
+    for field in ["max_speed", "max_accel", "max_turn_rate"] {
+        for bad in ["5e-324", "1e-310"] {
+            let text = cell(&robot("R1", "[0, 0]"), "", &task1).replace(
+                &format!(r#""{field}": "#),
+                &format!(r#""{field}": {bad}, "x{field}": "#),
+            );
+            let e = parse_cell(&text, Path::new(FILE)).expect_err(bad);
+            assert_eq!(e.field, format!("robots[0].{field}"), "{e}");
+            assert!(e.reason.contains("subnormal"), "{e}");
+        }
+    }
+    // So slow that the task of 1000 would start at 2.5e20 and occupy [2.5e20, 2.5e20].
+    for slow in ["1e-20", "1e-300"] {
+        let text = cell(&robot("R1", "[0, 0]"), "", &task1.replace("1.0", "1000"))
+            .replace(r#""max_speed": 1.0"#, &format!(r#""max_speed": {slow}"#));
+        let e = refused(&text);
+        assert_eq!(
+            (e.field.as_str(), e.body.as_deref()),
+            ("tasks[0].duration", Some("t1")),
+            "{e}"
+        );
+        assert!(
+            e.reason.contains("\"R1\"") && e.reason.contains(slow),
+            "{e}"
+        );
+    }
+    // A duration lost in rounding at the task's earliest start (2 + 1e-16 = 2).
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &task1.replace("1.0", "1e-16"),
+    ));
+    assert_eq!(e.field, "tasks[0].duration", "{e}");
+    // Found by the fuzz test: max_accel 1e308 over a radius of 0.42 is an infinite angular
+    // acceleration, and the planner's angles came out NaN (a panic). Ratios of limits out
+    // of f64's normal range are refused.
+    for (field, bad) in [
+        ("max_accel", "1e308"),
+        ("max_speed", "1e-300"),
+        ("max_turn_rate", "1e-300"),
+    ] {
+        let text = cell(&robot("R1", "[0, 0]"), "", &task1)
+            .replace(r#""max_accel": 2.0"#, r#""max_accel": 1e10"#)
+            .replace(
+                &format!(r#""{field}": "#),
+                &format!(r#""{field}": {bad}, "x{field}": "#),
+            );
+        let e = parse_cell(&text, Path::new(FILE)).expect_err(bad);
+        assert_eq!(e.field, format!("robots[0].{field}"), "{e}");
+        assert!(e.reason.contains("normal f64"), "{e}");
+    }
+    // A move whose time overflows f64 at normal limits.
+    let far = cell(&robot("R1", "[0, 0]"), "", &task("t1", "[1e300, 0]", ""))
+        .replace(r#""delta": 0.01"#, r#""delta": 1e290"#)
+        .replace(r#""max_speed": 1.0"#, r#""max_speed": 1e-10"#);
+    let e = refused(&far);
+    assert_eq!(e.field, "robots[0].max_speed", "{e}");
+    assert!(e.reason.contains("longer than f64 holds"), "{e}");
+    // An instant, and a long task at ordinary limits, are fine.
+    ok(&cell(
+        &robot("R1", "[0, 0]"),
+        "",
+        &[
+            task("t1", "[1, 2]", "").replace("1.0", "0"),
+            task("t2", "[2, 2]", "").replace("1.0", "1e9"),
+        ]
+        .join(","),
+    ));
 }

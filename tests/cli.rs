@@ -2,7 +2,8 @@
 //! file, the body and the field.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 fn workcell(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_workcell"))
@@ -221,6 +222,33 @@ fn bad_trajectories_and_documents_are_refused() {
     refused("not-an-object", "[]", &["a scene: an object with `robots`"]);
 }
 
+/// serde reads a struct from an array of its fields too: `[t, x, y, theta]` was taken as
+/// t, x, y, vx with θ = 0. Only the documented objects are accepted (issue 13, item 7).
+#[test]
+fn records_written_as_arrays_are_refused() {
+    let good = two_squares(10.0);
+    refused(
+        "sample-array",
+        &good.replace(r#"{"t": 1, "x": 10, "y": 0}"#, "[1, 10, 0, 1.5]"),
+        &["\"A\"", "robots[0].trajectory[1]", "a sample: an object"],
+    );
+    let b = format!(
+        r#"{{"name": "B", "shape": {SQUARE}, "trajectory": [{{"t": 0, "x": 5, "y": 0}}]}}"#
+    );
+    let a_as_array =
+        format!(r#"["A", {SQUARE}, [{{"t": 0, "x": 0, "y": 0}}, {{"t": 1, "x": 10, "y": 0}}]]"#);
+    refused(
+        "robot-array",
+        &format!(r#"{{"robots": [{a_as_array}, {b}]}}"#),
+        &["robots[0]", "a robot: an object"],
+    );
+    refused(
+        "document-array",
+        &format!("[0.01, [{b}], []]"),
+        &["a scene: an object"],
+    );
+}
+
 #[test]
 fn missing_file_and_bad_options_exit_2() {
     let o = workcell(&["check", "/nonexistent/scene.json"]);
@@ -236,6 +264,53 @@ fn missing_file_and_bad_options_exit_2() {
         let o = workcell(&["check", path.to_str().unwrap(), bad[0], bad[1]]);
         assert_eq!(o.status.code(), Some(2), "{bad:?}");
     }
+}
+
+/// Runs workcell and kills it if it is still running after `limit`: a guard against a
+/// hang, not a timing assertion (what it guards finishes in milliseconds, or never).
+fn workcell_unless_hung(args: &[&str], limit: Duration) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_workcell"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let start = Instant::now();
+    while child.try_wait().expect("waits").is_none() {
+        if start.elapsed() > limit {
+            child.kill().expect("kills");
+            panic!("workcell {args:?} still runs after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().expect("output")
+}
+
+/// A `sampled` step so fine that its looks never end (the f64 counter stopped advancing
+/// past 2^53) is refused, by `check` and by `compare` (issue 13, item 6).
+#[test]
+fn sampled_steps_that_would_never_finish_are_refused() {
+    let path = scene_file("sampled-fine", &two_squares(3.0));
+    let limit = Duration::from_secs(120);
+    for step in ["sampled:1e-300", "sampled:5e-324"] {
+        let o = workcell_unless_hung(&["check", path.to_str().unwrap(), "--method", step], limit);
+        assert_eq!(o.status.code(), Some(2), "{step}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(err.contains(path.to_str().unwrap()), "{err}");
+        assert!(
+            err.contains("field `method`") && err.contains("looks"),
+            "{err}"
+        );
+        let o = workcell_unless_hung(
+            &["compare", path.to_str().unwrap(), "--methods", step],
+            limit,
+        );
+        assert_eq!(o.status.code(), Some(2), "compare {step}: {}", stderr(&o));
+        assert!(stderr(&o).contains("looks"), "{}", stderr(&o));
+    }
+    // A fine step that does finish is still run.
+    let o = workcell(&["check", path.to_str().unwrap(), "--method", "sampled:1e-6"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
 
 #[test]
@@ -261,4 +336,21 @@ fn shipped_cells_give_their_expected_verdicts() {
         "adaptive-paper",
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
+/// `compare --svg` never replaces one of the scenes it reads (issue 13, item 10).
+#[test]
+fn compare_refuses_to_draw_over_a_scene() {
+    let path = scene_file("compare-over", &two_squares(3.0));
+    let o = workcell(&[
+        "compare",
+        path.to_str().unwrap(),
+        "--methods",
+        "adaptive",
+        "--svg",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("input file"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), two_squares(3.0));
 }

@@ -357,3 +357,214 @@ fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
     let e = text(&out.stderr);
     assert!(e.contains("legs[") && e.contains("not continuous"), "{e}");
 }
+
+/// The feedback cell with `edit` applied, written to a per-test file.
+fn edited_cell(test: &str, edit: impl FnOnce(&mut Value)) -> PathBuf {
+    let text = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
+    let mut cell: Value = serde_json::from_str(&text).unwrap();
+    edit(&mut cell);
+    let path = temp(test, "cell.json");
+    std::fs::write(&path, cell.to_string()).unwrap();
+    path
+}
+
+/// Writes a sequences document to a per-test file.
+fn sequences_file(test: &str, doc: &Value) -> PathBuf {
+    let path = temp(test, "sequences.json");
+    std::fs::write(&path, doc.to_string()).unwrap();
+    path
+}
+
+/// Asserts exit status 2 and that stderr names `file` and every one of `needles`.
+fn refused_naming(out: &Output, file: &Path, needles: &[&str]) {
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}{}", text(&out.stdout));
+    assert!(
+        err.contains(&format!("error: {}: ", file.display())),
+        "not about {}: {err}",
+        file.display()
+    );
+    for n in needles {
+        assert!(err.contains(n), "`{n}` missing from {err}");
+    }
+}
+
+/// All four tasks done by R1, in file order.
+fn r1_does_everything() -> Value {
+    serde_json::json!({"R1": ["weld-1", "weld-2", "weld-3", "weld-4"]})
+}
+
+/// A subnormal limit made `evaluate` panic ("schedules sample increasing times:
+/// NotFinite"); both commands now refuse the cell, naming the limit (issue 13, item 4).
+#[test]
+fn subnormal_limits_are_refused_by_solve_and_evaluate() {
+    let sequences = sequences_file("subnormal", &r1_does_everything());
+    for field in ["max_speed", "max_accel", "max_turn_rate"] {
+        for value in [5e-324, 1e-310] {
+            let cell = edited_cell("subnormal", |c| c["robots"][0][field] = value.into());
+            let named = format!("robots[0].{field}");
+            let out = workcell(&["solve", cell.to_str().unwrap()]);
+            refused_naming(&out, &cell, &["\"R1\"", &named, "subnormal"]);
+            let out = workcell(&[
+                "evaluate",
+                cell.to_str().unwrap(),
+                sequences.to_str().unwrap(),
+            ]);
+            refused_naming(&out, &cell, &["\"R1\"", &named, "subnormal"]);
+        }
+    }
+}
+
+/// With `max_speed` 1e-20 a task of 1000 s sat at [2e20, 2e20] and `solve` exited 0; now
+/// the cell is refused when read, naming the duration and the slow robot (issue 13, item 5).
+#[test]
+fn tasks_the_time_axis_cannot_hold_are_refused() {
+    for slow in [1e-20, 1e-300] {
+        let cell = edited_cell("vanishing", |c| {
+            c["robots"][0]["max_speed"] = slow.into();
+            c["tasks"][0]["duration"] = 1000.0.into();
+            for task in c["tasks"].as_array_mut().unwrap() {
+                task["robots"] = serde_json::json!(["R1"]);
+            }
+        });
+        let out = workcell(&["solve", cell.to_str().unwrap()]);
+        refused_naming(&out, &cell, &["\"weld-1\"", "tasks[0].duration", "\"R1\""]);
+        let sequences = sequences_file("vanishing", &r1_does_everything());
+        let out = workcell(&[
+            "evaluate",
+            cell.to_str().unwrap(),
+            sequences.to_str().unwrap(),
+        ]);
+        refused_naming(&out, &cell, &["tasks[0].duration"]);
+    }
+}
+
+/// A task of 1e300 leaves no room for the moves after it: `evaluate` blamed the sequences
+/// file (field `R1`); it names the cell's `tasks[2].duration`, and a wait of 1e300 in a
+/// solve result is blamed on that wait (issue 13, item 8).
+#[test]
+fn a_time_axis_too_long_is_blamed_on_what_stretched_it() {
+    let cell = edited_cell("blame", |c| c["tasks"][2]["duration"] = 1e300.into());
+    // The greedy loop's result has a wait, which the second half stretches.
+    let solved = workcell(&[
+        "solve",
+        &shipped("feedback-cell.json"),
+        "--json",
+        "--feedback",
+        "greedy",
+    ]);
+    let mut result = json(&solved);
+    let sequences = sequences_file("blame", &result);
+    let out = workcell(&[
+        "evaluate",
+        cell.to_str().unwrap(),
+        sequences.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &cell, &["\"weld-3\"", "tasks[2].duration", "1e300"]);
+
+    result["waits"][0]["duration"] = 1e300.into();
+    let sequences = sequences_file("blame-wait", &result);
+    let out = workcell(&[
+        "evaluate",
+        &shipped("feedback-cell.json"),
+        sequences.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &sequences, &["\"R2\"", "waits[0].duration", "1e300"]);
+}
+
+/// On a full disk `--export-scene` left a truncated file. Exports now go to a temporary file
+/// beside the target, renamed once whole: the previous file stays, and nothing else is left
+/// (issue 13, item 10). A file-size limit (`ulimit -f`, its signal ignored) stands in for
+/// the full disk.
+#[cfg(unix)]
+#[test]
+fn an_export_that_cannot_be_written_whole_leaves_the_previous_file() {
+    let scene = temp("full-disk", "scene.json");
+    let folder = scene.parent().unwrap();
+    std::fs::write(&scene, "previous").unwrap();
+    let out = Command::new("sh")
+        .args(["-c", r#"trap '' XFSZ; ulimit -f 4; exec "$0" "$@""#])
+        .arg(env!("CARGO_BIN_EXE_workcell"))
+        .args(["solve", &shipped("paper-cell.json"), "--export-scene"])
+        .arg(&scene)
+        .output()
+        .expect("sh runs");
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("cannot write the file"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), "previous");
+    let left: Vec<_> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, ["scene.json"], "no temporary file is left behind");
+    // Without the limit the export replaces the file, readable as before.
+    let out = workcell(&[
+        "solve",
+        &shipped("paper-cell.json"),
+        "--export-scene",
+        scene.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(std::fs::read_to_string(&scene).unwrap().starts_with('{'));
+}
+
+/// `--export-scene` given the input cell's path overwrote it; an output that names an input,
+/// however spelled, or another output, is refused before any work (issue 13, item 10).
+#[test]
+fn an_output_path_that_is_an_input_is_refused() {
+    let cell = temp("overwrite", "cell.json");
+    let original = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
+    std::fs::write(&cell, &original).unwrap();
+    let folder = cell.parent().unwrap();
+    let respelled = folder
+        .join("..")
+        .join(folder.file_name().unwrap())
+        .join("cell.json");
+    let mut spellings = vec![cell.clone(), respelled];
+    #[cfg(unix)]
+    {
+        let link = folder.join("link.json");
+        let _ = std::fs::remove_file(&link);
+        std::os::unix::fs::symlink(&cell, &link).unwrap();
+        spellings.push(link);
+    }
+    let cell_arg = cell.to_str().unwrap();
+    for output in &spellings {
+        for option in ["--export-scene", "--svg", "--export-graph"] {
+            let out = workcell(&["solve", cell_arg, option, output.to_str().unwrap()]);
+            refused_naming(&out, output, &[option, "input file"]);
+        }
+    }
+    let sequences = sequences_file(
+        "overwrite",
+        &serde_json::json!({"R1": ["weld-1", "weld-2", "weld-3", "weld-4"]}),
+    );
+    let out = workcell(&[
+        "evaluate",
+        cell_arg,
+        sequences.to_str().unwrap(),
+        "--svg",
+        sequences.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &sequences, &["--svg", "input file"]);
+    let both = folder.join("both.json");
+    let out = workcell(&[
+        "solve",
+        cell_arg,
+        "--export-scene",
+        both.to_str().unwrap(),
+        "--svg",
+        both.to_str().unwrap(),
+    ]);
+    refused_naming(&out, &both, &["--svg", "same file as `--export-scene`"]);
+    assert_eq!(
+        std::fs::read_to_string(&cell).unwrap(),
+        original,
+        "the cell is untouched"
+    );
+    assert!(!both.exists());
+}

@@ -304,11 +304,23 @@ fn small_cell(robots: &[(&str, &str)], obstacles: &str, tasks: &str) -> Cell {
 #[test]
 fn task_durations_f64_rounds_away_are_refused_not_dropped() {
     // 2 + 1e-16 rounds to 2: the task would have no length on the time axis, as a 1000 s
-    // task after moves of 1e20 s would. Both are refused like moves that vanish.
+    // task after moves of 1e20 s would. The cell shows it: refused when read (issue 13).
+    let robot = r#"{"name": "R1", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+                    "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1}"#;
+    let text = format!(
+        r#"{{"robots": [{robot}], "tasks": [{{"name": "t", "at": [1, 0], "duration": 1e-16}}]}}"#
+    );
+    let e = parse_cell(&text, Path::new("small.json")).expect_err("refused");
+    assert_eq!(
+        (e.field.as_str(), e.body.as_deref()),
+        ("tasks[0].duration", Some("t"))
+    );
+    // After a task of 1e17 only the schedule shows it: refused like moves that vanish.
     let cell = small_cell(
         &[("R1", "[0, 0]")],
         "",
-        r#"{"name": "t", "at": [1, 0], "duration": 1e-16}"#,
+        r#"{"name": "long", "at": [1, 0], "duration": 1e17},
+           {"name": "t", "at": [2, 0], "duration": 1}"#,
     );
     let opts = SolveOptions::default();
     let prepared = wcp::prepare(&cell, &opts, &()).unwrap();

@@ -1,5 +1,6 @@
 //! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
 
+use super::object_only::object_only;
 use super::scene_file::{document, polygon, read_file, DEFAULT_DELTA};
 use super::{InputError, MAX_COORDINATE_OVER_DELTA};
 use crate::collision::Body;
@@ -10,9 +11,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 #[derive(Deserialize)]
-#[serde(
-    expecting = "a cell: an object with `robots`, `tasks` and optional `delta` and `obstacles`"
-)]
+#[serde(remote = "Self")]
 struct RawCell {
     #[serde(default)]
     delta: Option<f64>,
@@ -23,9 +22,7 @@ struct RawCell {
 }
 
 #[derive(Deserialize)]
-#[serde(
-    expecting = "a robot: an object with `name`, `shape`, `home`, `max_speed`, `max_accel` and `max_turn_rate`"
-)]
+#[serde(remote = "Self")]
 struct RawRobot {
     name: String,
     shape: Vec<Vec<f64>>,
@@ -36,14 +33,14 @@ struct RawRobot {
 }
 
 #[derive(Deserialize)]
-#[serde(expecting = "an obstacle: an object with `name` and `shape`")]
+#[serde(remote = "Self")]
 struct RawObstacle {
     name: String,
     shape: Vec<Vec<f64>>,
 }
 
 #[derive(Deserialize)]
-#[serde(expecting = "a task: an object with `name`, `at`, `duration` and optional `robots`")]
+#[serde(remote = "Self")]
 struct RawTask {
     name: String,
     at: Vec<f64>,
@@ -51,6 +48,23 @@ struct RawTask {
     #[serde(default)]
     robots: Option<Vec<String>>,
 }
+
+object_only!(
+    RawCell,
+    "a cell: an object with `robots`, `tasks` and optional `delta` and `obstacles`"
+);
+object_only!(
+    RawRobot,
+    "a robot: an object with `name`, `shape`, `home`, `max_speed`, `max_accel` and `max_turn_rate`"
+);
+object_only!(
+    RawObstacle,
+    "an obstacle: an object with `name` and `shape`"
+);
+object_only!(
+    RawTask,
+    "a task: an object with `name`, `at`, `duration` and optional `robots`"
+);
 
 /// A robot of the cell: its shape, home and limits.
 #[derive(Clone, Debug, PartialEq)]
@@ -339,6 +353,7 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
         });
     }
 
+    super::time_axis::check_time_axis(file, &robots, &tasks)?;
     let cell = Cell {
         file: file.to_path_buf(),
         delta,

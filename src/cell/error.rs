@@ -6,7 +6,7 @@ use std::path::PathBuf;
 /// Input that cannot be used: names the file, the body (when known) and the field.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub struct InputError {
-    /// The file read.
+    /// The file read; empty for arguments given in code (see [`InputError::in_file`]).
     pub file: PathBuf,
     /// The body (robot or obstacle) concerned, when there is one.
     pub body: Option<String>,
@@ -32,9 +32,26 @@ impl InputError {
     }
 }
 
+impl InputError {
+    /// The same error about `file`, when it names none yet: the library's checks of
+    /// arguments know no file, the command line that passed them does.
+    pub fn in_file(self, file: &std::path::Path) -> Self {
+        if self.file.as_os_str().is_empty() {
+            InputError {
+                file: file.to_path_buf(),
+                ..self
+            }
+        } else {
+            self
+        }
+    }
+}
+
 impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: ", self.file.display())?;
+        if !self.file.as_os_str().is_empty() {
+            write!(f, "{}: ", self.file.display())?;
+        }
         if let Some(body) = &self.body {
             write!(f, "body \"{body}\", ")?;
         }

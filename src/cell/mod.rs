@@ -4,10 +4,12 @@
 mod cell_file;
 mod error;
 mod legs_file;
+mod object_only;
 mod precision;
 mod scene_file;
 mod scene_writer;
 mod sequences_file;
+mod time_axis;
 
 pub use cell_file::{load_cell, parse_cell, Cell, CellObstacle, CellRobot, LoadedCell, Task};
 pub use error::InputError;
@@ -19,3 +21,5 @@ pub use precision::{
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
 pub use scene_writer::scene_document;
 pub use sequences_file::{load_sequences, parse_sequences, Sequences, Wait};
+pub(crate) use time_axis::number;
+pub use time_axis::{keeps_length, TASK_LENGTH_TOL};

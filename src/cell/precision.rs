@@ -91,9 +91,13 @@ pub fn check_time_resolution(scene: &Scene, time_tol: f64, file: &Path) -> Resul
 
 /// Refuses a scene whose coordinates are too large for δ to be resolved in f64, whose
 /// shapes were cleaned up by more than a sliver of δ ([`MAX_REPAIR_SHIFT_OVER_DELTA`]), or
-/// whose horizon is longer than f64 holds. Fields are named as in the scene file (robots
-/// first, then obstacles, in file order).
+/// whose horizon is longer than f64 holds, and a δ that is not a positive number. Fields are
+/// named as in the scene file (robots first, then obstacles, in file order).
 pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), InputError> {
+    if !(delta.is_finite() && delta > 0.0) {
+        let reason = format!("must be a positive number, got {delta}");
+        return Err(InputError::new(file, None, "delta", reason));
+    }
     let limit = MAX_COORDINATE_OVER_DELTA * delta;
     let too_large = |value: f64, what: &str| {
         format!(

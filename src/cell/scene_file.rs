@@ -1,5 +1,6 @@
 //! Reading a scene file (contract section 1) into a [`Scene`].
 
+use super::object_only::object_only;
 use super::InputError;
 use crate::collision::{Body, Scene};
 use crate::geometry::{ConvexPolygon, PolygonError, Vec2};
@@ -12,7 +13,7 @@ use std::path::Path;
 pub const DEFAULT_DELTA: f64 = 0.001;
 
 #[derive(Deserialize)]
-#[serde(expecting = "a scene: an object with `robots` and optional `delta` and `obstacles`")]
+#[serde(remote = "Self")]
 struct RawScene {
     #[serde(default)]
     delta: Option<f64>,
@@ -22,7 +23,7 @@ struct RawScene {
 }
 
 #[derive(Deserialize)]
-#[serde(expecting = "a robot: an object with `name`, `shape` and `trajectory`")]
+#[serde(remote = "Self")]
 struct RawRobot {
     name: String,
     shape: Vec<Vec<f64>>,
@@ -30,9 +31,7 @@ struct RawRobot {
 }
 
 #[derive(Deserialize)]
-#[serde(
-    expecting = "a sample: an object with `t`, `x`, `y` and optional `theta`, `vx`, `vy`, `omega`"
-)]
+#[serde(remote = "Self")]
 struct RawSample {
     t: f64,
     x: f64,
@@ -48,11 +47,28 @@ struct RawSample {
 }
 
 #[derive(Deserialize)]
-#[serde(expecting = "an obstacle: an object with `name` and `shape`")]
+#[serde(remote = "Self")]
 struct RawObstacle {
     name: String,
     shape: Vec<Vec<f64>>,
 }
+
+object_only!(
+    RawScene,
+    "a scene: an object with `robots` and optional `delta` and `obstacles`"
+);
+object_only!(
+    RawRobot,
+    "a robot: an object with `name`, `shape` and `trajectory`"
+);
+object_only!(
+    RawSample,
+    "a sample: an object with `t`, `x`, `y` and optional `theta`, `vx`, `vy`, `omega`"
+);
+object_only!(
+    RawObstacle,
+    "an obstacle: an object with `name` and `shape`"
+);
 
 /// A scene read from a file, with the repairs made on the way (one line each).
 #[derive(Clone, Debug)]

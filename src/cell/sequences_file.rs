@@ -1,7 +1,12 @@
 //! Reading a sequences file (input of `workcell evaluate`): each robot's tasks in order.
+//!
+//! The document is read over borrowed raw JSON (serde_json's `RawValue`) and each list is
+//! walked item by item: only what is used is parsed, so that a result with 2·10⁶ waits costs
+//! about its list of waits, not a tree of maps 18 times the file's size.
 
 use super::{Cell, InputError};
-use serde_json::Value;
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde_json::value::RawValue;
 use std::path::Path;
 
 /// Sequences read from a file: each robot's tasks, and waits before given moves.
@@ -31,90 +36,91 @@ pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError>
     parse_sequences(&super::scene_file::read_file(path)?, path, cell)
 }
 
+/// What a sequences document is when it is not one.
+const NOT_SEQUENCES: &str = "expected an object mapping robot names to lists of task names";
+
 /// Parses `{"R1": ["weld-3", "weld-1"], "R2": ["weld-2"]}`, or a whole `solve --json`
-/// result (recognised by its `sequences` and `makespan`; its `sequences` object is read), into each robot's task indices, in the cell's robot
-/// order. A robot left out does no task. Refused: unknown robots or tasks, a task given to a
-/// robot not allowed to do it, a task listed twice, a task left out.
+/// result (recognised by its `sequences` and `makespan`; its `sequences` object is read),
+/// into each robot's task indices, in the cell's robot order. A robot left out does no
+/// task. Refused: unknown robots or tasks, a task given to a robot not allowed to do it, a
+/// task listed twice, a task left out.
 ///
 /// A whole result also brings its `waits` (`[{"robot", "before_move", "duration"}]`) and
 /// `legs` (see [`super::parse_legs`]), so that the schedule is the one `solve` certified.
 pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences, InputError> {
-    let err = |body: Option<&str>, field: String, reason: String| {
+    let err = |body: Option<&str>, field: &str, reason: String| {
         InputError::new(file, body, field, reason)
     };
-    let doc: Value = serde_json::from_str(text)
-        .map_err(|e| err(None, String::new(), format!("not valid JSON: {e}")))?;
+    let top = entries(text).map_err(|e| match e.classify() {
+        serde_json::error::Category::Data => err(None, "", NOT_SEQUENCES.to_owned()),
+        _ => err(None, "", format!("not valid JSON: {e}")),
+    })?;
+    let find = |key: &str| {
+        let mut found = top.iter().filter(|(k, _)| k == key).map(|(_, v)| *v);
+        match (found.next(), found.next()) {
+            (_, Some(_)) => Err(err(None, key, "the key is given twice".to_owned())),
+            (one, None) => Ok(one),
+        }
+    };
     // A whole `solve` result has `makespan` beside `sequences`; otherwise `sequences` may be
     // a robot's name.
-    let whole = doc.get("sequences").is_some() && doc.get("makespan").is_some();
-    let prefix = if whole { "sequences." } else { "" };
-    // Read again, keeping every key: `Value` would let a repeated robot overwrite the first.
-    let entries = if whole {
-        serde_json::from_str::<Whole>(text).map(|w| w.sequences)
+    let whole =
+        top.iter().any(|(k, _)| k == "makespan") && top.iter().any(|(k, _)| k == "sequences");
+    let (prefix, robots) = if whole {
+        let raw = find("sequences")?.expect("present");
+        let robots =
+            entries(raw.get()).map_err(|_| err(None, "sequences", NOT_SEQUENCES.to_owned()))?;
+        ("sequences.", robots)
     } else {
-        serde_json::from_str::<Entries>(text)
-    }
-    .map_err(|_| {
-        let reason = "expected an object mapping robot names to lists of task names".to_owned();
-        err(None, prefix.trim_end_matches('.').to_owned(), reason)
-    })?;
+        ("", top.clone())
+    };
     let mut seen = std::collections::HashSet::new();
-    if let Some((robot, _)) = entries.0.iter().find(|(k, _)| !seen.insert(k.as_str())) {
+    if let Some((robot, _)) = robots.iter().find(|(k, _)| !seen.insert(k.as_str())) {
         let reason = "the robot is listed twice".to_owned();
-        return Err(err(Some(robot), format!("{prefix}{robot}"), reason));
+        return Err(err(Some(robot), &key_field(prefix, robot), reason));
     }
-    let map = entries.0;
+    let task_index: std::collections::HashMap<&str, usize> = cell
+        .tasks
+        .iter()
+        .enumerate()
+        .map(|(k, t)| (t.name.as_str(), k))
+        .collect();
     let mut routes = vec![Vec::new(); cell.robots.len()];
     let mut done_by: Vec<Option<String>> = vec![None; cell.tasks.len()];
-    for (robot, list) in &map {
-        let field = format!("{prefix}{robot}");
+    for (robot, list) in &robots {
+        let field = key_field(prefix, robot);
         let Some(r) = cell.robots.iter().position(|x| &x.name == robot) else {
-            return Err(err(
-                Some(robot),
-                field,
-                "the cell has no robot of this name".into(),
-            ));
+            let reason = "the cell has no robot of this name".to_owned();
+            return Err(err(Some(robot), &field, reason));
         };
-        let Value::Array(items) = list else {
-            return Err(err(
-                Some(robot),
-                field,
-                "expected a list of task names".into(),
-            ));
-        };
-        for (k, item) in items.iter().enumerate() {
+        let mut route = Vec::new();
+        for_each_item(list, &mut |k, item| {
             let field = format!("{field}[{k}]");
-            let Value::String(name) = item else {
-                return Err(err(
-                    Some(robot),
-                    field,
-                    format!("expected a task name, found {item}"),
-                ));
+            let Ok(name) = serde_json::from_str::<String>(item.get()) else {
+                let reason = format!("expected a task name, found {}", item.get());
+                return Err(err(Some(robot), &field, reason));
             };
-            let Some(t) = cell.tasks.iter().position(|x| &x.name == name) else {
-                return Err(err(
-                    Some(robot),
-                    field,
-                    format!("the cell has no task \"{name}\""),
-                ));
+            let Some(&t) = task_index.get(name.as_str()) else {
+                let reason = format!("the cell has no task \"{name}\"");
+                return Err(err(Some(robot), &field, reason));
             };
             if !cell.tasks[t].robots.contains(&r) {
-                return Err(err(
-                    Some(robot),
-                    field,
-                    format!("{robot} is not allowed to do task \"{name}\""),
-                ));
+                let reason = format!("{robot} is not allowed to do task \"{name}\"");
+                return Err(err(Some(robot), &field, reason));
             }
             if let Some(first) = &done_by[t] {
-                return Err(err(
-                    Some(robot),
-                    field,
-                    format!("task \"{name}\" is already done at `{first}`"),
-                ));
+                let reason = format!("task \"{name}\" is already done at `{first}`");
+                return Err(err(Some(robot), &field, reason));
             }
-            done_by[t] = Some(field.clone());
-            routes[r].push(t);
-        }
+            done_by[t] = Some(field);
+            route.push(t);
+            Ok(())
+        })
+        .map_err(|refused| {
+            refused
+                .unwrap_or_else(|| err(Some(robot), &field, "expected a list of task names".into()))
+        })?;
+        routes[r] = route;
     }
     if let Some(t) = done_by.iter().position(Option::is_none) {
         let name = &cell.tasks[t].name;
@@ -125,15 +131,20 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
         } else {
             "(every robot's list)"
         };
-        return Err(err(Some(name), field.to_owned(), reason));
+        return Err(err(Some(name), field, reason));
     }
-    let waits = match doc.get("waits").filter(|_| whole) {
-        None | Some(Value::Null) => Vec::new(),
-        Some(list) => waits(list, file, cell, &routes)?,
+    let waits = match find("waits")?.filter(|_| whole) {
+        Some(list) if list.get() != "null" => waits(list, file, cell, &routes)?,
+        _ => Vec::new(),
     };
-    let legs = match doc.get("legs").filter(|_| whole) {
-        None | Some(Value::Null) => Vec::new(),
-        Some(list) => super::parse_legs(list, file, cell, &routes)?,
+    // Changed moves are few (one per remedy): read as a tree.
+    let legs = match find("legs")?.filter(|_| whole) {
+        Some(list) if list.get() != "null" => {
+            let list: serde_json::Value = serde_json::from_str(list.get())
+                .map_err(|e| err(None, "legs", format!("not valid JSON: {e}")))?;
+            super::parse_legs(&list, file, cell, &routes)?
+        }
+        _ => Vec::new(),
     };
     Ok(Sequences {
         routes,
@@ -142,85 +153,151 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
     })
 }
 
-/// An object's entries in document order, repeated keys kept.
-struct Entries(Vec<(String, Value)>);
-
-impl<'de> serde::Deserialize<'de> for Entries {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct Visitor;
-        impl<'de> serde::de::Visitor<'de> for Visitor {
-            type Value = Entries;
-            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("an object")
-            }
-            fn visit_map<A: serde::de::MapAccess<'de>>(
-                self,
-                mut map: A,
-            ) -> Result<Entries, A::Error> {
-                let mut entries = Vec::new();
-                while let Some(entry) = map.next_entry::<String, Value>()? {
-                    entries.push(entry);
-                }
-                Ok(Entries(entries))
-            }
-        }
-        d.deserialize_map(Visitor)
+/// The field of a robot's list: its key, or `""` for the empty key (found by fuzzing: an
+/// empty key made an error that named no field).
+fn key_field(prefix: &str, robot: &str) -> String {
+    if robot.is_empty() {
+        format!("{prefix}\"\"")
+    } else {
+        format!("{prefix}{robot}")
     }
 }
 
-/// The part of a `solve` result read here.
+/// An object's entries in document order, repeated keys kept, their values unparsed.
+fn entries(text: &str) -> Result<Vec<(String, &RawValue)>, serde_json::Error> {
+    struct Entries;
+    impl<'de> Visitor<'de> for Entries {
+        type Value = Vec<(String, &'de RawValue)>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("an object")
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+            let mut out = Vec::new();
+            while let Some(entry) = map.next_entry::<String, &'de RawValue>()? {
+                out.push(entry);
+            }
+            Ok(out)
+        }
+    }
+    let mut de = serde_json::Deserializer::from_str(text);
+    let out = (&mut de).deserialize_map(Entries)?;
+    de.end()?;
+    Ok(out)
+}
+
+/// Calls `each` on every item of the JSON array `raw`, in order, keeping none of them.
+/// `Err(None)`: `raw` is not an array; `Err(Some(e))`: `each` refused an item.
+fn for_each_item<'a>(
+    raw: &'a RawValue,
+    each: &mut dyn FnMut(usize, &'a RawValue) -> Result<(), InputError>,
+) -> Result<(), Option<InputError>> {
+    struct Items<'f, 'a> {
+        each: &'f mut dyn FnMut(usize, &'a RawValue) -> Result<(), InputError>,
+        refused: &'f mut Option<InputError>,
+    }
+    impl<'f, 'de> Visitor<'de> for Items<'f, 'de> {
+        type Value = ();
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a list")
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+            let mut k = 0;
+            while let Some(item) = seq.next_element::<&'de RawValue>()? {
+                if let Err(e) = (self.each)(k, item) {
+                    *self.refused = Some(e);
+                    return Err(de::Error::custom("refused"));
+                }
+                k += 1;
+            }
+            Ok(())
+        }
+    }
+    let mut refused = None;
+    let mut de = serde_json::Deserializer::from_str(raw.get());
+    let items = Items {
+        each,
+        refused: &mut refused,
+    };
+    match (&mut de).deserialize_seq(items) {
+        Ok(()) => Ok(()),
+        Err(_) => Err(refused),
+    }
+}
+
+/// The fields of one wait, unparsed.
 #[derive(serde::Deserialize)]
-struct Whole {
-    sequences: Entries,
+struct RawWait<'a> {
+    #[serde(borrow, default)]
+    robot: Option<&'a RawValue>,
+    #[serde(borrow, default)]
+    before_move: Option<&'a RawValue>,
+    #[serde(borrow, default)]
+    duration: Option<&'a RawValue>,
 }
 
 fn waits(
-    list: &Value,
+    list: &RawValue,
     file: &Path,
     cell: &Cell,
     routes: &[Vec<usize>],
 ) -> Result<Vec<Wait>, InputError> {
-    let Value::Array(items) = list else {
-        let reason = "expected a list of {\"robot\", \"before_move\", \"duration\"}";
-        return Err(InputError::new(file, None, "waits", reason));
-    };
-    let mut waits = Vec::with_capacity(items.len());
-    for (k, item) in items.iter().enumerate() {
+    let mut waits = Vec::new();
+    for_each_item(list, &mut |k, item| {
         let at = format!("waits[{k}]");
-        let name = item.get("robot").and_then(Value::as_str);
-        let Some(robot) = name.and_then(|n| cell.robots.iter().position(|r| r.name == n)) else {
+        // Only an object: serde would read an array positionally.
+        if !item.get().starts_with('{') {
+            let reason = "expected an object {\"robot\", \"before_move\", \"duration\"}";
+            return Err(InputError::new(file, None, at, reason));
+        }
+        let raw: RawWait = serde_json::from_str(item.get())
+            .map_err(|e| InputError::new(file, None, at.as_str(), e))?;
+        let name = raw
+            .robot
+            .and_then(|v| serde_json::from_str::<String>(v.get()).ok());
+        let Some(robot) = name
+            .as_deref()
+            .and_then(|n| cell.robots.iter().position(|r| r.name == n))
+        else {
             let reason = "`robot` must name a robot of the cell";
-            return Err(InputError::new(file, name, format!("{at}.robot"), reason));
+            return Err(InputError::new(
+                file,
+                name.as_deref(),
+                format!("{at}.robot"),
+                reason,
+            ));
         };
         let moves = routes[robot].len() + 1;
-        let before_move = item.get("before_move").and_then(Value::as_u64);
+        let before_move = raw
+            .before_move
+            .and_then(|v| serde_json::from_str::<u64>(v.get()).ok());
         let Some(before_move) = before_move.filter(|&m| m < moves as u64) else {
             let reason = format!(
                 "`before_move` must be a move of the robot: 0 to {}",
                 moves - 1
             );
-            return Err(InputError::new(
-                file,
-                name,
-                format!("{at}.before_move"),
-                reason,
-            ));
+            let field = format!("{at}.before_move");
+            return Err(InputError::new(file, name.as_deref(), field, reason));
         };
-        let duration = item.get("duration").and_then(Value::as_f64);
+        let duration = raw
+            .duration
+            .and_then(|v| serde_json::from_str::<f64>(v.get()).ok());
         let Some(duration) = duration.filter(|d| d.is_finite() && *d >= 0.0) else {
             let reason = "`duration` must be a non-negative number";
-            return Err(InputError::new(
-                file,
-                name,
-                format!("{at}.duration"),
-                reason,
-            ));
+            let field = format!("{at}.duration");
+            return Err(InputError::new(file, name.as_deref(), field, reason));
         };
         waits.push(Wait {
             robot,
             before_move: before_move as usize,
             duration,
         });
-    }
+        Ok(())
+    })
+    .map_err(|refused| {
+        refused.unwrap_or_else(|| {
+            let reason = "expected a list of {\"robot\", \"before_move\", \"duration\"}";
+            InputError::new(file, None, "waits", reason)
+        })
+    })?;
     Ok(waits)
 }

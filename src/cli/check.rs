@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 use workcell::cell::{check_precision, check_time_resolution, load_scene, InputError};
-use workcell::collision::{check, CheckOptions, CheckReport};
+use workcell::collision::{check, validate, CheckOptions, CheckReport};
 
 /// Exit status when a pair spent its work budget before a proof or a witness.
 const EXIT_UNRESOLVED: u8 = 3;
@@ -19,6 +19,7 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
         opts.delta.unwrap_or(loaded.scene.delta),
         path,
     )?;
+    validate(&loaded.scene, opts).map_err(|e| e.in_file(path))?;
     let time_tol = opts.time_tol_for(loaded.scene.horizon());
     check_time_resolution(&loaded.scene, time_tol, path)?;
     for w in &loaded.warnings {

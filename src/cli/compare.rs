@@ -5,10 +5,14 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use workcell::cell::{check_precision, load_scene, InputError};
-use workcell::compare::{chart, compare, Comparison, Contender, NamedScene, REFERENCE_TIME_TOL};
+use workcell::compare::{
+    chart, compare, default_contenders, validate_contenders, Comparison, Contender, NamedScene,
+    REFERENCE_TIME_TOL,
+};
 
 /// Compares `contenders` on the scenes in `inputs` (files, or folders whose `*.json` files
-/// are read, cell files `*-cell.json` aside). Exit 0, or 2 on unusable input.
+/// are read, cell files `*-cell.json` aside). Exit 0, or 2 on unusable input or a method
+/// given that cannot check one of the scenes.
 pub fn run_compare(
     inputs: &[PathBuf],
     contenders: &[Contender],
@@ -16,6 +20,10 @@ pub fn run_compare(
     json: bool,
 ) -> Result<ExitCode, InputError> {
     let files = scene_files(inputs)?;
+    if let Some(svg) = svg {
+        let inputs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+        super::output::check_outputs(&inputs, &[("--svg", svg)])?;
+    }
     let mut scenes = Vec::with_capacity(files.len());
     for file in &files {
         let loaded = load_scene(file)?;
@@ -25,6 +33,11 @@ pub fn run_compare(
             scene: loaded.scene,
         });
     }
+    // The defaults skip a scene they cannot check (counted unsupported); a method the user
+    // named is refused.
+    if contenders != default_contenders() {
+        validate_contenders(&scenes, contenders)?;
+    }
     let bar =
         ProgressBar::with_draw_target(Some(scenes.len() as u64), ProgressDrawTarget::stderr());
     if json || !std::io::stderr().is_terminal() {
@@ -33,12 +46,7 @@ pub fn run_compare(
     let comparison = compare(&scenes, contenders, |done| bar.set_position(done as u64));
     bar.finish_and_clear();
     if let Some(path) = svg {
-        std::fs::write(path, chart(&comparison)).map_err(|e| InputError {
-            file: path.to_path_buf(),
-            body: None,
-            field: String::new(),
-            reason: format!("cannot write the chart: {e}"),
-        })?;
+        super::output::write_file(path, chart(&comparison).as_bytes())?;
     }
     let text = if json {
         serde_json::to_string_pretty(&comparison).expect("a comparison serialises") + "\n"

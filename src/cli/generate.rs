@@ -115,8 +115,7 @@ pub fn run_generate(
     for (name, make) in files {
         let file = out.join(name);
         let text = make().map_err(|reason| fail(&file, reason))? + "\n";
-        std::fs::write(&file, text)
-            .map_err(|e| fail(&file, format!("cannot write the file: {e}")))?;
+        super::output::write_file(&file, text.as_bytes())?;
         // A closed pipe (`| head`) is the reader's choice, not an error of ours.
         let _ = writeln!(stdout, "{}", file.display());
     }

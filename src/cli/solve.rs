@@ -247,6 +247,7 @@ pub struct SolveArgs<'a> {
 
 /// Solves the cell; exit status 0 collision-free, 1 none found.
 pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCode, InputError> {
+    check_paths(&[path], out, args.export_graph)?;
     let mut bar = Bar::new(out.json, args.progress);
     let cell = load(path).inspect_err(|_| bar.finish())?;
     let mut opts = SolveOptions {
@@ -331,6 +332,7 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
 
 /// Evaluates given sequences; exit status 0 collision-free, 1 the schedule collides.
 pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<ExitCode, InputError> {
+    check_paths(&[path, sequences], out, None)?;
     let cell = load(path)?;
     let given = load_sequences(sequences, &cell)?;
     let opts = SolveOptions::default();
@@ -418,10 +420,22 @@ fn exports(
 }
 
 fn write(file: &Path, text: &str) -> Result<(), InputError> {
-    std::fs::write(file, text).map_err(|e| InputError {
-        file: file.to_path_buf(),
-        body: None,
-        field: String::new(),
-        reason: format!("cannot write the file: {e}"),
-    })
+    super::output::write_file(file, text.as_bytes())
+}
+
+/// Refuses outputs that would replace an input or each other, before any work is done.
+fn check_paths(
+    inputs: &[&Path],
+    out: &Outputs,
+    export_graph: Option<&Path>,
+) -> Result<(), InputError> {
+    let outputs: Vec<(&str, &Path)> = [
+        ("--export-scene", out.export_scene.as_deref()),
+        ("--svg", out.svg.as_deref()),
+        ("--export-graph", export_graph),
+    ]
+    .into_iter()
+    .filter_map(|(option, path)| Some((option, path?)))
+    .collect();
+    super::output::check_outputs(inputs, &outputs)
 }

@@ -4,6 +4,7 @@
 use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
 use super::pair::{check_pair, PairSettings, SharedLimit};
 use super::{Method, Scene, Stats};
+use crate::cell::{check_precision, InputError};
 use crate::geometry::WalkTolerances;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -161,7 +162,15 @@ pub struct PairStats {
 /// pair named is closer than δ at `first_contact.time` (an exact distance), and the same
 /// holds before `safe_until`, which is within the time tolerance before it. The result,
 /// counters included, does not depend on the number of threads.
+///
+/// # Panics
+///
+/// When [`validate`] refuses the arguments (a δ that is not a positive number, say): such a
+/// check would never end or would prove nothing. [`try_check`] returns that error instead.
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
+    if let Err(e) = validate(scene, opts) {
+        panic!("collision::check: {e}");
+    }
     if scene.robot_count() >= PARALLEL_MIN_ROBOTS {
         // The broad phase goes to the thread pool twice and the pairs once more: from a
         // thread outside the pool, hand the whole check over once instead.
@@ -169,6 +178,53 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     } else {
         check_in_pool(scene, opts)
     }
+}
+
+/// [`check`] for a scene and options not validated yet: refuses, as `workcell check` does,
+/// what [`validate`] refuses and scenes that f64 cannot check at their δ
+/// ([`crate::cell::check_precision`]). The errors name the field and no file.
+pub fn try_check(scene: &Scene, opts: &CheckOptions) -> Result<CheckReport, InputError> {
+    validate(scene, opts)?;
+    check_precision(
+        scene,
+        opts.delta.unwrap_or(scene.delta),
+        std::path::Path::new(""),
+    )?;
+    Ok(check(scene, opts))
+}
+
+/// Refuses arguments that a check could not honour: a δ (the options' or else the scene's)
+/// or a time tolerance that is not a positive number, a grazing allowance outside [0, 1), and
+/// a `sampled` step that is not positive, finer than f64 resolves the horizon's times, or
+/// so fine that the looks would exceed [`super::MAX_SAMPLED_LOOKS`] per pair. Fields are
+/// named after [`CheckOptions`] (`delta` for the scene's δ); the error names no file.
+pub fn validate(scene: &Scene, opts: &CheckOptions) -> Result<(), InputError> {
+    let refuse = |field: &str, reason: String| {
+        Err(InputError::new(
+            std::path::Path::new(""),
+            None,
+            field,
+            reason,
+        ))
+    };
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    let delta = opts.delta.unwrap_or(scene.delta);
+    if !positive(delta) {
+        return refuse("delta", format!("must be a positive number, got {delta}"));
+    }
+    if let Some(tol) = opts.time_tol.filter(|&t| !positive(t)) {
+        return refuse("time_tol", format!("must be a positive number, got {tol}"));
+    }
+    if !(0.0..1.0).contains(&opts.grazing_tol) {
+        let reason = format!("must lie in [0, 1), got {}", opts.grazing_tol);
+        return refuse("grazing_tol", reason);
+    }
+    if let Method::Sampled { step } = opts.method {
+        if let Some(why) = super::sampled::step_problem(step, scene.horizon()) {
+            return refuse("method", why);
+        }
+    }
+    Ok(())
 }
 
 fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {

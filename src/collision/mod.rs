@@ -23,11 +23,12 @@ mod stats;
 
 pub use broad_phase::candidate_pairs;
 pub use check::{
-    check, BudgetExhausted, CheckOptions, CheckReport, Contact, PairStats,
+    check, try_check, validate, BudgetExhausted, CheckOptions, CheckReport, Contact, PairStats,
     DEFAULT_MAX_WORK_PER_PAIR, DEFAULT_TIME_TOL_OVER_HORIZON,
 };
 pub use method::Method;
 #[cfg(feature = "parry-peer")]
 pub use peer::{check_with_parry, PeerReport};
+pub use sampled::MAX_SAMPLED_LOOKS;
 pub use scene::{Body, Scene};
 pub use stats::Stats;

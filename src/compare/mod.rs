@@ -12,7 +12,8 @@ mod chart;
 
 pub use chart::chart;
 
-use crate::collision::{check, CheckOptions, CheckReport, Method, Scene};
+use crate::cell::InputError;
+use crate::collision::{check, validate, CheckOptions, CheckReport, Method, Scene};
 use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
@@ -137,7 +138,30 @@ pub struct NamedScene {
     pub scene: Scene,
 }
 
-/// Runs every contender on every scene; `progress` is told after each scene.
+/// Refuses a contender that cannot check one of the scenes, as [`validate`] says (a
+/// `sampled` step too fine for its horizon), naming the scene as the file.
+pub fn validate_contenders(
+    scenes: &[NamedScene],
+    contenders: &[Contender],
+) -> Result<(), InputError> {
+    for named in scenes {
+        for &c in contenders {
+            if let Contender::Ours(method) = c {
+                let opts = CheckOptions {
+                    method,
+                    ..CheckOptions::default()
+                };
+                validate(&named.scene, &opts)
+                    .map_err(|e| e.in_file(std::path::Path::new(&named.name)))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Runs every contender on every scene; `progress` is told after each scene. A method that
+/// cannot check a scene ([`validate`]: a `sampled` step too fine for its horizon) counts
+/// that scene as unsupported, as parry does for shapes it refuses.
 pub fn compare(
     scenes: &[NamedScene],
     contenders: &[Contender],
@@ -214,13 +238,12 @@ pub fn compare(
 fn run(scene: &Scene, contender: Contender) -> Option<Verdict> {
     match contender {
         Contender::Ours(method) => {
-            let report = check(
-                scene,
-                &CheckOptions {
-                    method,
-                    ..CheckOptions::default()
-                },
-            );
+            let opts = CheckOptions {
+                method,
+                ..CheckOptions::default()
+            };
+            validate(scene, &opts).ok()?;
+            let report = check(scene, &opts);
             Some(Verdict {
                 contact: report.first_contact.map(|c| (c.time, c.bodies)),
             })

@@ -3,8 +3,9 @@
 use super::feedback::{SolveOptions, StageTimes};
 use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use super::moves::MoveStore;
-use super::schedule::{BuildError, Collision, Delay, Schedule};
-use crate::cell::{Cell, InputError, PieceSpec, Sequences};
+use super::schedule::{Activity, BuildError, Collision, Delay, Schedule};
+use super::time_axis::{culprit, first_infinite_time};
+use crate::cell::{number, Cell, InputError, PieceSpec, Sequences};
 use crate::collision::{check, CheckReport};
 use crate::geometry::Vec2;
 use crate::planning::{time_primitives, Primitive, RobotLimits};
@@ -37,7 +38,9 @@ pub struct Evaluated {
 /// [`crate::cell::parse_sequences`] gives them) and checks the schedule. A move the planner
 /// cannot make, or a changed move that does not start where the robot is or end where its
 /// leg ends, is an input error about `sequences_file`; one that comes too close to an
-/// obstacle or a robot is a collision the check reports.
+/// obstacle or a robot is a collision the check reports. A schedule that f64 cannot place on one time axis is an
+/// error about what stretched the axis: a task's duration or a robot's limits (the cell),
+/// or a wait (`sequences_file`).
 pub fn evaluate(
     cell: &Cell,
     sequences: &Sequences,
@@ -78,28 +81,66 @@ pub fn evaluate(
         };
         legs = with_leg(&legs, spec.robot, spec.leg, new);
     }
-    let schedule = Schedule::build(cell, routes, &legs, &cache).map_err(|e| {
-        let r = e.robot();
-        let robot = &cell.robots[r].name;
-        let field = match e {
+    let schedule = match Schedule::build(cell, routes, &legs, &cache) {
+        Ok(schedule) => schedule,
+        Err(BuildError::Precision { robot, time }) => {
+            let at = Placement {
+                robot,
+                time,
+                delays: &delays,
+            };
+            return Err(precision_error(cell, sequences, sequences_file, &cache, at));
+        }
+        Err(e @ BuildError::Discontinuous { .. }) => {
+            let (r, BuildError::Discontinuous { leg, .. }) = (e.robot(), &e) else {
+                unreachable!("matched above")
+            };
+            let robot = &cell.robots[r].name;
+            let k = sequences
+                .legs
+                .iter()
+                .position(|l| l.robot == r && l.leg == *leg);
+            let field = k.map_or(robot.clone(), |k| format!("legs[{k}]"));
+            return Err(InputError::new(
+                sequences_file,
+                Some(robot),
+                field,
+                e.reason(cell),
+            ));
+        }
+        Err(e) => {
+            let r = e.robot();
+            let robot = &cell.robots[r].name;
+            let BuildError::Move { from, to, .. } = e else {
+                unreachable!("handled above")
+            };
             // The position in the robot's list of the task the move leads to (or leaves,
             // for the way home).
-            BuildError::Move { from, to, .. } => {
-                let task = if to != 0 { to } else { from }.saturating_sub(1);
-                let k = routes[r].iter().position(|&t| t == task).unwrap_or(0);
-                format!("{robot}[{k}]")
-            }
-            BuildError::Precision { .. } => robot.clone(),
-            BuildError::Discontinuous { leg, .. } => {
-                let k = sequences
-                    .legs
-                    .iter()
-                    .position(|l| l.robot == r && l.leg == leg);
-                k.map_or(robot.clone(), |k| format!("legs[{k}]"))
-            }
+            let task = if to != 0 { to } else { from }.saturating_sub(1);
+            let k = routes[r].iter().position(|&t| t == task).unwrap_or(0);
+            let reason = e.reason(cell);
+            return Err(InputError::new(
+                sequences_file,
+                Some(robot),
+                format!("{robot}[{k}]"),
+                reason,
+            ));
+        }
+    };
+    // A move whose time overflowed leaves samples the checker cannot take.
+    if let Some((robot, time)) = schedule
+        .robots
+        .iter()
+        .enumerate()
+        .find_map(|(r, s)| first_infinite_time(s).map(|t| (r, t)))
+    {
+        let at = Placement {
+            robot,
+            time,
+            delays: &delays,
         };
-        InputError::new(sequences_file, Some(robot), field, e.reason(cell))
-    })?;
+        return Err(precision_error(cell, sequences, sequences_file, &cache, at));
+    }
     times.scheduling = clock.elapsed();
     let clock = Instant::now();
     let report = check(&schedule.scene(cell), &opts.check);
@@ -116,6 +157,117 @@ pub fn evaluate(
         collision_free,
         times,
     })
+}
+
+/// Where a schedule left f64's time axis: robot, time, and the waits it was built with.
+struct Placement<'a> {
+    robot: usize,
+    time: f64,
+    delays: &'a [Delay],
+}
+
+/// The error for a schedule f64 cannot place, about the activity that stretched the axis
+/// (see [`culprit`]): a task's `duration` or the robot's limits in the cell, or a wait in
+/// the sequences file.
+fn precision_error(
+    cell: &Cell,
+    sequences: &Sequences,
+    sequences_file: &Path,
+    cache: &MoveStore,
+    at: Placement,
+) -> InputError {
+    let (r, time) = (at.robot, at.time);
+    let name = &cell.robots[r].name;
+    let route = &sequences.routes[r];
+    let Some(misplaced) = culprit(cell, r, route, at.delays, cache, time) else {
+        let reason = format!("at t = {time:e} f64 cannot place the robot's schedule");
+        return cell.error(Some(name), format!("robots[{r}]"), reason);
+    };
+    let (lost, blamed) = (misplaced.lost, misplaced.blamed);
+    let resolution = format!(
+        "at t = {}, where f64 spaces times {} apart",
+        number(time),
+        number(time.abs() * f64::EPSILON)
+    );
+    let what_lost = format!(
+        "{resolution}, {name}'s {} ({} long) cannot keep its length",
+        lost.activity.describe(cell, r),
+        number(lost.length)
+    );
+    match blamed.activity {
+        Activity::Work(k) => {
+            let reason = if blamed == lost {
+                format!(
+                    "this duration of {} is too short for the time axis: {resolution}, it \
+                     cannot keep its length; rescale the time unit, or give 0 for an instant",
+                    number(blamed.length)
+                )
+            } else {
+                format!(
+                    "this duration of {} stretches the time axis: {what_lost}; rescale the \
+                     time unit",
+                    number(blamed.length)
+                )
+            };
+            cell.error(
+                Some(&cell.tasks[k].name),
+                format!("tasks[{k}].duration"),
+                reason,
+            )
+        }
+        Activity::Wait(_) => {
+            // The longest of the waits given before that move.
+            let i = (0..sequences.waits.len())
+                .filter(|&i| {
+                    let w = &sequences.waits[i];
+                    w.robot == r && w.before_move == blamed.step
+                })
+                .max_by(|&a, &b| {
+                    sequences.waits[a]
+                        .duration
+                        .total_cmp(&sequences.waits[b].duration)
+                })
+                .unwrap_or(0);
+            let reason = format!(
+                "this wait of {} stretches the time axis: {what_lost}",
+                number(sequences.waits.get(i).map_or(blamed.length, |w| w.duration))
+            );
+            InputError::new(
+                sequences_file,
+                Some(name),
+                format!("waits[{i}].duration"),
+                reason,
+            )
+        }
+        Activity::Move { .. } | Activity::Pause { .. } | Activity::Park { .. } | Activity::Done => {
+            let robot = &cell.robots[r];
+            let limits = format!(
+                "max_speed {}, max_accel {}, max_turn_rate {}",
+                number(robot.max_speed),
+                number(robot.max_accel),
+                number(robot.max_turn_rate)
+            );
+            let the_move = blamed.activity.describe(cell, r);
+            let length = number(blamed.length);
+            let reason = if !blamed.length.is_finite() {
+                format!(
+                    "at its limits ({limits}) the robot's {the_move} takes longer than f64 holds"
+                )
+            } else if blamed == lost {
+                format!(
+                    "at its limits ({limits}) the robot's {the_move} takes only {length}, which \
+                     cannot keep its length {resolution}; lower the limits or rescale the time \
+                     unit"
+                )
+            } else {
+                format!(
+                    "at its limits ({limits}) the robot's {the_move} takes {length}: \
+                     {what_lost}; raise the limits or rescale the time unit"
+                )
+            };
+            cell.error(Some(name), format!("robots[{r}]"), reason)
+        }
+    }
 }
 
 /// A piece as read, timed by the motion model at the robot's limits.

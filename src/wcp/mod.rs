@@ -25,6 +25,7 @@ pub mod report;
 mod schedule;
 mod sequence;
 pub mod sequencer;
+mod time_axis;
 
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
@@ -43,3 +44,4 @@ pub use schedule::{
     route_nodes, Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,
 };
 pub use sequence::{sequence, sequence_with};
+pub use time_axis::{culprit, Misplaced, Stretch};
