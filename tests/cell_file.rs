@@ -364,3 +364,22 @@ fn limits_and_durations_off_the_time_axis_are_refused() {
         .join(","),
     ));
 }
+
+#[test]
+fn a_shape_clean_up_that_moves_the_boundary_is_refused_in_cells_too() {
+    // As in scenes (issue 13, item 2): vertex 1 lies 2.4e-4 from vertex 0 on a fixture
+    // 2.5e8 long, within the shape tolerance; dropping it would move the boundary by
+    // 0.24 δ.
+    let obstacle =
+        r#"{"name": "big", "shape": [[0, 10], [0.00024, 9.99976], [2.5e8, 10], [0, 2.5e8]]}"#;
+    let e = refused(&cell(
+        &robot("R1", "[0, 0]"),
+        obstacle,
+        &task("t", "[-3, 0]", ""),
+    ));
+    assert_eq!(
+        (e.body.as_deref(), e.field.as_str()),
+        (Some("big"), "obstacles[0].shape[1]")
+    );
+    assert!(e.reason.contains("repeated or collinear"), "{e}");
+}

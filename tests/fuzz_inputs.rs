@@ -133,11 +133,10 @@ fn mutated_shipped_files_are_read_or_refused_cleanly() {
     report(&failures);
 }
 
-/// The narrow-phase disagreements `cargo fuzz run narrow_phase` found: the walk must agree
-/// with the brute force within 10⁻⁹ of the shapes' size. Ignored until issue 13, item 1
-/// (nearly parallel long edges: the walk stops at the wrong end) is fixed by its owner.
+/// The narrow-phase disagreements `cargo fuzz run narrow_phase` found (nearly parallel long
+/// edges, issue 13, item 1): the walk must agree with the brute force within 10⁻⁹ of the
+/// shapes' size.
 #[test]
-#[ignore = "issue 13, item 1: the walk on nearly parallel long edges (fixed elsewhere)"]
 fn kept_narrow_phase_cases_agree_with_brute_force() {
     use workcell::geometry::{brute_force_distance, closest_features, ConvexPolygon, Posed};
     let folder = root().join("tests/fuzz/narrow_phase");

@@ -1,6 +1,7 @@
 //! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
 
 use super::object_only::object_only;
+use super::precision::check_shape_repairs;
 use super::scene_file::{document, polygon, read_file, DEFAULT_DELTA};
 use super::{InputError, MAX_COORDINATE_OVER_DELTA};
 use crate::collision::Body;
@@ -185,6 +186,7 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
             &r.shape,
             &mut warnings,
         )?;
+        check_shape_repairs(&shape, &r.name, &at, delta, file)?;
         if shape.radius() > limit {
             return Err(err(
                 &r.name,
@@ -240,6 +242,7 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
             &o.shape,
             &mut warnings,
         )?;
+        check_shape_repairs(&shape, &o.name, &at, delta, file)?;
         let extent = shape
             .vertices()
             .iter()

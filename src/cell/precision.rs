@@ -35,11 +35,23 @@ fn field_of(scene: &Scene, k: usize) -> String {
 /// Refuses a shape whose clean-up (repeated and collinear vertices removed) moved its
 /// boundary by more than [`MAX_REPAIR_SHIFT_OVER_DELTA`]·δ.
 fn check_repairs(body: &Body, at: &str, delta: f64, file: &Path) -> Result<(), InputError> {
+    check_shape_repairs(&body.shape, &body.name, at, delta, file)
+}
+
+/// As [`check_repairs`], for a shape of the body `name` at field `at` of any file (scenes
+/// and cells alike).
+pub(crate) fn check_shape_repairs(
+    shape: &crate::geometry::ConvexPolygon,
+    name: &str,
+    at: &str,
+    delta: f64,
+    file: &Path,
+) -> Result<(), InputError> {
     let limit = MAX_REPAIR_SHIFT_OVER_DELTA * delta;
-    match body.shape.repair_shift() {
+    match shape.repair_shift() {
         Some(shift) if shift.distance > limit => Err(InputError::new(
             file,
-            Some(&body.name),
+            Some(name),
             format!("{at}.shape[{}]", shift.vertex),
             format!(
                 "this vertex lies {:e} from the rest of the shape, which the shape tolerance \
