@@ -440,7 +440,7 @@ fn tasks_the_time_axis_cannot_hold_are_refused() {
 }
 
 /// A task of 1e300 leaves no room for the moves after it: `evaluate` blamed the sequences
-/// file (field `R1`); it names the cell's `tasks[2].duration`, and a wait of 1e300 in a
+/// file (field `R1`) and `solve` the robot; both name the cell's `tasks[2].duration`, and a wait of 1e300 in a
 /// solve result is blamed on that wait (issue 13, item 8).
 #[test]
 fn a_time_axis_too_long_is_blamed_on_what_stretched_it() {
@@ -460,6 +460,9 @@ fn a_time_axis_too_long_is_blamed_on_what_stretched_it() {
         cell.to_str().unwrap(),
         sequences.to_str().unwrap(),
     ]);
+    refused_naming(&out, &cell, &["\"weld-3\"", "tasks[2].duration", "1e300"]);
+    // `solve` blamed the robot (`robots[1]`) for the same cell.
+    let out = workcell(&["solve", cell.to_str().unwrap()]);
     refused_naming(&out, &cell, &["\"weld-3\"", "tasks[2].duration", "1e300"]);
 
     result["waits"][0]["duration"] = 1e300.into();

@@ -17,8 +17,9 @@ pub use search::SearchOptions;
 use super::graph::{check_reachable, plan_reaches};
 use super::legs::Legs;
 use super::moves::{bounds, robot_nodes, MoveStore};
-use super::schedule::{BuildError, Collision, Delay, Schedule};
+use super::schedule::{Activity, BuildError, Collision, Delay, Schedule};
 use super::sequencer::{Bounds, ExactArcs, SequencerError, SequencerOptions};
+use super::time_axis::culprit;
 use crate::cell::{Cell, InputError};
 use crate::collision::{CheckOptions, CheckReport};
 use crate::geometry::Vec2;
@@ -342,10 +343,17 @@ fn build(
     legs: &Legs,
     cache: &MoveStore,
 ) -> Result<Schedule, InputError> {
-    Schedule::build(cell, routes, legs, cache).map_err(|e| build_error(cell, e))
+    Schedule::build(cell, routes, legs, cache)
+        .map_err(|e| build_error(cell, routes, legs, cache, e))
 }
 
-fn build_error(cell: &Cell, e: BuildError) -> InputError {
+fn build_error(
+    cell: &Cell,
+    routes: &[Vec<usize>],
+    legs: &Legs,
+    cache: &MoveStore,
+    e: BuildError,
+) -> InputError {
     let robot = &cell.robots[e.robot()].name;
     match e {
         // The table certified every move the sequencer may choose: a failure here means
@@ -358,11 +366,24 @@ fn build_error(cell: &Cell, e: BuildError) -> InputError {
                 e.reason(cell)
             ),
         ),
-        BuildError::Precision { .. } => cell.error(
-            Some(robot),
-            format!("robots[{}]", e.robot()),
-            e.reason(cell),
-        ),
+        // Blame the task whose duration stretched the axis, as `evaluate` does, and the
+        // robot's limits otherwise (its waits are the solver's, never the user's).
+        BuildError::Precision { robot: r, time } => {
+            let delays = Delay::of_legs(routes, legs);
+            let blamed = culprit(cell, r, &routes[r], &delays, cache, time).map(|m| m.blamed);
+            match blamed.map(|b| b.activity) {
+                Some(Activity::Work(k)) => cell.error(
+                    Some(&cell.tasks[k].name),
+                    format!("tasks[{k}].duration"),
+                    format!(
+                        "this duration of {:e} stretches the time axis: {}",
+                        cell.tasks[k].duration,
+                        e.reason(cell)
+                    ),
+                ),
+                _ => cell.error(Some(robot), format!("robots[{r}]"), e.reason(cell)),
+            }
+        }
         // Remedies are made to start where the robot is: a jump is a defect of ours.
         BuildError::Discontinuous { .. } => cell.error(
             Some(robot),
