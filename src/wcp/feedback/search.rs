@@ -4,7 +4,7 @@
 //! A search node is a schedule: routes, the conflicts the sequencer must avoid, and every
 //! robot's legs. Every node is checked when it is made. A node whose schedule collides
 //! branches into its children, one per way out of that collision: either robot yielding by
-//! each remedy of `remedies.rs` (each the least of its kind that clears the pair), or the
+//! each remedy of `remedies/` (each the least of its kind that clears the pair), or the
 //! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
 //! child is costed lazily: it waits in the queue, and the sequencer runs only when it comes
 //! out.

@@ -1,0 +1,132 @@
+//! Detours: the leg re-planned with the other robot as an obstacle, its pose if it stands
+//! or the region it sweeps over the conflict window if it moves.
+
+use super::{child, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
+use crate::geometry::{ConvexPolygon, Posed, Vec2};
+use crate::motion::Pose;
+use crate::planning::convex_hull;
+use crate::wcp::feedback::clearing::clears;
+use crate::wcp::feedback::Remedy;
+use crate::wcp::legs::{leg, Leg, Piece};
+use crate::wcp::moves::node_pose;
+use crate::wcp::schedule::Activity;
+
+/// Half-width of the short detour window about the contact, in the time the detouring
+/// robot takes at full speed to cover the two robots' radii summed.
+const DETOUR_REACH: f64 = 2.0;
+/// Samples of a moving robot per convex piece of the region it sweeps (a detour's
+/// obstacle).
+const SWEEP_CHUNK: usize = 8;
+
+/// runs of its samples while it moves.
+fn occupancy(ctx: &Ctx, view: &View, y: usize, t0: f64, t1: f64) -> Vec<ConvexPolygon> {
+    let ys = &view.robots[y];
+    let shape = &ctx.cell.robots[y].shape;
+    let placed = |p: Pose| -> Vec<Vec2> {
+        let posed = Posed::new(shape, p.pos.x, p.pos.y, p.theta);
+        (0..posed.len()).map(|i| posed.vertex(i)).collect()
+    };
+    let mut poses = vec![ys.pose_at(t0)];
+    poses.extend(
+        ys.samples
+            .iter()
+            .filter(|s| s.t > t0 && s.t < t1)
+            .map(|s| Pose {
+                pos: s.pos,
+                theta: s.theta,
+            }),
+    );
+    poses.push(ys.pose_at(t1));
+    poses.dedup();
+    let mut out = Vec::new();
+    let mut start = 0;
+    loop {
+        let end = (start + SWEEP_CHUNK).min(poses.len() - 1);
+        let points: Vec<Vec2> = poses[start..=end].iter().flat_map(|&p| placed(p)).collect();
+        let hull = convex_hull(points);
+        let pts: Vec<[f64; 2]> = hull.iter().map(|v| [v.x, v.y]).collect();
+        if let Ok((polygon, _)) = ConvexPolygon::new(&pts) {
+            out.push(polygon);
+        }
+        if end == poses.len() - 1 {
+            return out;
+        }
+        start = end;
+    }
+}
+
+/// Re-plan the leg around the other robot.
+pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
+    let m = side.sx.leg?;
+    if !matches!(side.sx.activity, Activity::Move { .. }) {
+        return None;
+    }
+    let xs = &view.robots[side.x];
+    let (t0, t1) = leg_window(xs, m);
+    // Where the other robot is to be gone round: all it sweeps while both move (or where it
+    // stands); and, when it moves, only where it is about the contact, so that two robots
+    // can pass side by side where the first would close a whole corridor.
+    let mut windows = vec![match side.sy.activity {
+        Activity::Move { .. } => (side.sy.start.max(t0), side.sy.end.min(t1)),
+        _ => (t0, t1),
+    }];
+    if matches!(side.sy.activity, Activity::Move { .. }) {
+        let robot = &ctx.cell.robots[side.x];
+        let reach = robot.shape.radius() + ctx.cell.robots[side.y].shape.radius();
+        let tau = DETOUR_REACH * reach / robot.max_speed;
+        let (w0, w1) = windows[0];
+        let near = ((side.t - tau).max(w0), (side.t + tau).min(w1));
+        if near != windows[0] {
+            windows.push(near);
+        }
+    }
+    let (from, to) = leg_nodes(view, side.x, m);
+    let (a, b) = (
+        node_pose(ctx.cell, side.x, from),
+        node_pose(ctx.cell, side.x, to),
+    );
+    let current = pieces_of(ctx, view, side.x, m)?;
+    let old = leg(view.legs, side.x, m).clone();
+    let tried = windows.into_iter().filter_map(|(w0, w1)| {
+        let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
+        let motion = ctx.plan(side.x, a, b, &region)?;
+        if matches!(current.as_slice(), [Piece::Go { motion: old, .. }] if old.path == motion.path)
+        {
+            return None;
+        }
+        let new = Leg {
+            pieces: Some(
+                vec![Piece::Go {
+                    motion: motion.clone(),
+                    scale: 1.0,
+                }]
+                .into(),
+            ),
+            ..old.clone()
+        };
+        let s = ctx.rebuild(view, side.x, m, &new)?;
+        let window = (t0, side.window_end(&s, m));
+        let ys = &view.robots[side.y];
+        clears(
+            ctx.cell,
+            (side.x, &s),
+            (side.y, ys),
+            window,
+            &ctx.opts.check,
+        )
+        .then_some((s.end, motion, new, s))
+    });
+    // The earliest end; on ties the first window tried.
+    let (_, motion, new, s) = tried.fold(None, |best: Option<(f64, _, _, _)>, c| match best {
+        Some(b) if b.0 <= c.0 => Some(b),
+        _ => Some(c),
+    })?;
+    let remedy = Remedy::Detour {
+        robot: side.x,
+        leg: m,
+        nodes: (from, to),
+        around: side.y,
+        path: motion.path.clone(),
+    };
+    Some(child(view, side.x, m, new, s, remedy))
+}

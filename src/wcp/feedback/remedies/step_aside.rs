@@ -1,0 +1,151 @@
+//! Stepping aside: a robot in the other's way goes to a free parking pose nearby (found
+//! on rings about where it stands), waits there and goes on.
+
+use super::{child, horizons, least_clearing, leg_nodes, leg_window, Child, Ctx, Side, View};
+use crate::collision::Body;
+use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
+use crate::motion::{Motion, Pose};
+use crate::wcp::feedback::Remedy;
+use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
+use crate::wcp::moves::node_pose;
+use crate::wcp::schedule::{Activity, RobotSchedule};
+
+/// Parking rings, in the parking robot's radii, and directions per ring.
+const PARK_RINGS: [f64; 5] = [2.0, 3.0, 4.5, 6.5, 9.0];
+const PARK_DIRECTIONS: usize = 12;
+/// Parking poses examined in full (planned, timed, checked) per remedy, nearest first.
+const PARK_TRIES: usize = 3;
+
+/// discs robot `y` sweeps over `[t0, t1]`.
+fn parking_poses(
+    ctx: &Ctx,
+    view: &View,
+    x: usize,
+    y: usize,
+    q: Pose,
+    (t0, t1): (f64, f64),
+) -> Vec<Pose> {
+    let cell = ctx.cell;
+    let shape = &cell.robots[x].shape;
+    let (rx, ry) = (shape.radius(), cell.robots[y].shape.radius());
+    let ys = &view.robots[y];
+    let passes: Vec<Vec2> = ys
+        .samples
+        .iter()
+        .filter(|s| s.t >= t0 && s.t <= t1)
+        .map(|s| s.pos)
+        .chain([ys.pose_at(t0).pos, ys.pose_at(t1).pos])
+        .collect();
+    let obstacles: Vec<Body> = ctx.moves.obstacles().to_vec();
+    let tol = WalkTolerances::default();
+    let clear_of_fixtures = |p: Pose| {
+        let posed = Posed::new(shape, p.pos.x, p.pos.y, p.theta);
+        obstacles.iter().all(|o| {
+            let Motion::Fixed(at) = &o.motion else {
+                return true;
+            };
+            let other = Posed::new(&o.shape, at.pos.x, at.pos.y, at.theta);
+            closest_features(&posed, &other, None, &tol).distance > 2.0 * cell.delta
+        })
+    };
+    let mut out = Vec::new();
+    for ring in PARK_RINGS {
+        for k in 0..PARK_DIRECTIONS {
+            let (s, c) = (k as f64 * std::f64::consts::TAU / PARK_DIRECTIONS as f64).sin_cos();
+            let p = Pose {
+                pos: q.pos + ring * rx * Vec2::new(c, s),
+                theta: q.theta,
+            };
+            let away = passes
+                .iter()
+                .all(|g| (g - p.pos).norm() > rx + ry + 2.0 * cell.delta);
+            if away && clear_of_fixtures(p) {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// A robot standing in the other's way goes to a parking pose nearby, waits there, and goes
+/// on to where its leg leads (or back home).
+pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
+    let t = side.t;
+    let x = side.x;
+    let route = &view.routes[x];
+    let m = match side.sx.activity {
+        // Waiting at the leg's start node, or already on the way: it leaves that node for
+        // the parking pose instead, and lets the other pass.
+        Activity::Wait(_) | Activity::Move { .. } => side.sx.leg?,
+        // Home for good: a robot without tasks makes an excursion from home to home; one
+        // with tasks goes home from its last task by way of the parking pose.
+        Activity::Done if route.is_empty() => 0,
+        Activity::Done => route.len(),
+        _ => return None,
+    };
+    let (from, to) = leg_nodes(view, x, m);
+    let xs = &view.robots[x];
+    let q = match side.sx.activity {
+        Activity::Move { .. } => node_pose(ctx.cell, x, from),
+        _ => xs.pose_at(t),
+    };
+    let t0 = if route.is_empty() {
+        0.0
+    } else {
+        leg_window(xs, m).0
+    };
+    let bounds = horizons(view, side.y, &side.sy, t0);
+    let until = t0 + bounds.last().copied().unwrap_or(0.0);
+    let (a, b) = (node_pose(ctx.cell, x, from), node_pose(ctx.cell, x, to));
+    let old = leg(view.legs, x, m).clone();
+    let keep_wait = matches!(side.sx.activity, Activity::Done);
+    let tried = parking_poses(ctx, view, x, side.y, q, (t.min(t0.max(0.0)), until))
+        .into_iter()
+        .filter_map(|p| {
+            let there = ctx.plan(x, a, p, &[])?;
+            let back = ctx.plan(x, p, b, &[])?;
+            Some((p, there, back))
+        })
+        .take(PARK_TRIES)
+        .filter_map(|(p, there, back)| {
+            let make = |d: f64| {
+                Some(Leg {
+                    wait: if keep_wait { old.wait } else { 0.0 },
+                    pieces: Some(
+                        vec![
+                            Piece::Go {
+                                motion: there.clone(),
+                                scale: 1.0,
+                            },
+                            Piece::Hold {
+                                duration: d,
+                                reason: HoldReason::Park,
+                            },
+                            Piece::Go {
+                                motion: back.clone(),
+                                scale: 1.0,
+                            },
+                        ]
+                        .into(),
+                    ),
+                })
+            };
+            let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, make)?;
+            Some((s.end, p, d, new, s))
+        });
+    let (_, park, d, new, s) = tried.fold(
+        None,
+        |best: Option<(f64, Pose, f64, Leg, RobotSchedule)>, c| match best {
+            Some(b) if b.0 <= c.0 => Some(b),
+            _ => Some(c),
+        },
+    )?;
+    let remedy = Remedy::StepAside {
+        robot: x,
+        leg: m,
+        nodes: (from, to),
+        park,
+        duration: d,
+    };
+    Some(child(view, x, m, new, s, remedy))
+}
