@@ -43,8 +43,8 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
             body: None,
             field: String::new(),
             reason: format!(
-                "{} intervals could not be resolved in f64 at these coordinates: no proof",
-                report.stats.unresolved
+                "{} could not be resolved in f64 at these coordinates: no proof",
+                super::counted(report.stats.unresolved, "interval")
             ),
         });
     }
@@ -72,8 +72,8 @@ fn summary(
         format!("not certified: `{method}` certifies nothing")
     } else if r.stats.unresolved > 0 {
         format!(
-            "not certified: {} intervals unresolved in f64",
-            r.stats.unresolved
+            "not certified: {} unresolved in f64",
+            super::counted(r.stats.unresolved, "interval")
         )
     } else if r.stats.grazing > 0 {
         "NOT CERTIFIED: within the grazing allowance".to_owned()
@@ -151,16 +151,16 @@ fn summary(
     }
     if s.grazing > 0 {
         line(format!(
-            "NOT CERTIFIED: {} intervals (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
-            s.grazing, opts.grazing_tol
+            "NOT CERTIFIED: {} (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
+            super::counted(s.grazing, "interval"), opts.grazing_tol
         ));
     }
     line(format!(
-        "{} pairs checked ({} more pruned by the broad phase) in {:.3} ms on {} threads",
-        r.pairs,
+        "{} checked ({} more pruned by the broad phase) in {:.3} ms on {}",
+        super::counted(r.pairs as u64, "pair"),
         r.pairs_pruned,
         elapsed.as_secs_f64() * 1e3,
-        threads
+        super::counted(threads as u64, "thread")
     ));
     out
 }

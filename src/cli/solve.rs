@@ -7,7 +7,9 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-use workcell::cell::{load_cell, load_sequences, scene_document, Cell, InputError};
+use workcell::cell::{
+    load_blind_sequences, load_cell, load_sequences, scene_document, Cell, InputError,
+};
 use workcell::wcp::remedy_json::legs_json;
 use workcell::wcp::report::{
     collision_json, rounds_json, schedule_json, sequences_json, summary, waits_json, ResultJson,
@@ -38,11 +40,11 @@ pub struct FeedbackArgs {
     #[arg(long, default_value = "search", value_parser = ["search", "greedy"])]
     feedback: String,
     /// The search's budget: most schedules checked.
-    #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, default_value_t = 5000, value_parser = crate::at_least_one, allow_negative_numbers = true)]
     search_nodes: u64,
     /// The search's time limit, in seconds (a safety stop; the result is deterministic
     /// when it is not reached).
-    #[arg(long, default_value_t = 60.0, value_parser = positive_seconds)]
+    #[arg(long, default_value_t = 60.0, value_parser = positive_seconds, allow_negative_numbers = true)]
     search_time: f64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour, step-aside (default: all).
@@ -331,10 +333,20 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
 }
 
 /// Evaluates given sequences; exit status 0 collision-free, 1 the schedule collides.
-pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<ExitCode, InputError> {
+/// With `blind`, the sequences are a solve result's collision-blind ones.
+pub fn run_evaluate(
+    path: &Path,
+    sequences: &Path,
+    blind: bool,
+    out: &Outputs,
+) -> Result<ExitCode, InputError> {
     check_paths(&[path, sequences], out, None)?;
     let cell = load(path)?;
-    let given = load_sequences(sequences, &cell)?;
+    let given = if blind {
+        load_blind_sequences(sequences, &cell)?
+    } else {
+        load_sequences(sequences, &cell)?
+    };
     let opts = SolveOptions::default();
     let evaluated = wcp::evaluate(&cell, &given, &opts, sequences)?;
     let collisions: Vec<&Collision> = evaluated.collision.iter().collect();

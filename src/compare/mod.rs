@@ -57,7 +57,18 @@ impl FromStr for Contender {
             "parry" => Err(
                 "the parry peer is not built in: build with `--features parry-peer`".to_string(),
             ),
-            _ => s.parse().map(Contender::Ours),
+            // The methods' own list does not know the peer.
+            _ => s.parse().map(Contender::Ours).map_err(|e: String| {
+                let parry = if cfg!(feature = "parry-peer") {
+                    "parry"
+                } else {
+                    "parry (with the feature parry-peer)"
+                };
+                match e.strip_suffix("sampled:STEP or advance") {
+                    Some(head) => format!("{head}sampled:STEP, advance or {parry}"),
+                    None => e,
+                }
+            }),
         }
     }
 }
