@@ -59,6 +59,10 @@ enum Command {
         /// Work budget of each pair, in evaluations of the distance (default 1000000).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
         max_work: Option<u64>,
+        /// Write a self-contained HTML page that animates the scene, its first contact
+        /// highlighted and the certified-free prefix shown on the time slider.
+        #[arg(long)]
+        html: Option<PathBuf>,
     },
     /// Schedule a cell: plan every move, sequence the tasks, check the schedule and re-plan
     /// around collisions until it is collision-free.
@@ -234,6 +238,7 @@ fn main() -> ExitCode {
             time_tol,
             per_pair,
             max_work,
+            html,
         } => {
             let defaults = CheckOptions::default();
             let opts = CheckOptions {
@@ -244,7 +249,7 @@ fn main() -> ExitCode {
                 max_work_per_pair: max_work.unwrap_or(defaults.max_work_per_pair),
                 ..defaults
             };
-            cli::check::run_check(&scene, json, &opts)
+            cli::check::run_check(&scene, json, &opts, html.as_deref())
         }
         Command::Solve {
             cell,
