@@ -59,6 +59,10 @@ enum Command {
         /// Work budget of each pair, in evaluations of the distance (default 1000000).
         #[arg(long, value_parser = at_least_one, allow_negative_numbers = true)]
         max_work: Option<u64>,
+        /// Write a self-contained HTML page that animates the scene, its first contact
+        /// highlighted and the certified-free prefix shown on the time slider.
+        #[arg(long)]
+        html: Option<PathBuf>,
     },
     /// Schedule a cell: plan every move, sequence the tasks, check the schedule and re-plan
     /// around collisions until it is collision-free.
@@ -250,6 +254,7 @@ fn main() -> ExitCode {
             time_tol,
             per_pair,
             max_work,
+            html,
         } => {
             let defaults = CheckOptions::default();
             let opts = CheckOptions {
@@ -260,7 +265,7 @@ fn main() -> ExitCode {
                 max_work_per_pair: max_work.unwrap_or(defaults.max_work_per_pair),
                 ..defaults
             };
-            cli::check::run_check(&scene, json, &opts)
+            cli::check::run_check(&scene, json, &opts, html.as_deref())
         }
         Command::Solve {
             cell,

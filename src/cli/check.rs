@@ -11,8 +11,16 @@ use workcell::collision::{check, validate, CheckOptions, CheckReport};
 const EXIT_UNRESOLVED: u8 = 3;
 
 /// Runs the check; the exit status is 0 collision-free, 1 collision, 3 unresolved within
-/// the work budget.
-pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
+/// the work budget. `html`: the animated page of the scene, written after the check.
+pub fn run_check(
+    path: &Path,
+    json: bool,
+    opts: &CheckOptions,
+    html: Option<&Path>,
+) -> Result<ExitCode, InputError> {
+    if let Some(file) = html {
+        super::output::check_outputs(&[path], &[("--html", file)])?;
+    }
     let loaded = load_scene(path)?;
     check_precision(
         &loaded.scene,
@@ -37,6 +45,10 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
     };
     // A closed pipe (`| head`) is the reader's choice, not an error of ours.
     let _ = std::io::stdout().write_all(text.as_bytes());
+    if let Some(file) = html {
+        let model = workcell::view::Model::of_check(path, &loaded.scene, &report);
+        super::output::write_file(file, workcell::view::html(&model).as_bytes())?;
+    }
     if report.stats.unresolved > 0 {
         return Err(InputError {
             file: path.to_path_buf(),

@@ -8,9 +8,7 @@
 //! the largest error of the first contact time. With the feature `parry-peer`, parry2d-f64's
 //! nonlinear shape cast runs as the method `parry` and cross-checks the reference.
 
-mod chart;
-
-pub use chart::chart;
+pub use crate::view::chart;
 
 use crate::cell::InputError;
 use crate::collision::{check, validate, CheckOptions, CheckReport, Method, Scene};
