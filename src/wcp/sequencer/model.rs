@@ -24,7 +24,7 @@ const HOME_CANDIDATES: usize = 4;
 
 /// Travel costs: a matrix, or lower bounds computed when asked plus the exact arcs.
 enum Costs {
-    /// `[r][from][to]`.
+    /// `[r][slot[from]][slot[to]]` (see [`Model::slot`]).
     Dense(Vec<f64>),
     /// Bounds, and the exact arcs keyed `(r · n1 + from) · n1 + to` (penalised).
     Lazy {
@@ -74,6 +74,10 @@ pub(super) struct Model {
     pub conflicts: Option<ConflictIndex>,
     /// Granular neighbourhoods, from [`GRANULAR_FROM_TASKS`] tasks on.
     pub neighbours: Option<Neighbours>,
+    /// Row (and column) of each node in the dense cost matrix: granular models with task
+    /// positions lay the tasks out along a Hilbert curve, so that the arcs a search asks
+    /// for (between near tasks) share cache lines; the order of the search is unchanged.
+    slot: Vec<usize>,
 }
 
 /// Conflicts keyed by (robot, step id), see [`Model::step_id`].
@@ -188,7 +192,13 @@ impl Model {
             capable_robots,
             conflicts: None,
             neighbours: None,
+            slot: (0..n1).collect(),
         };
+        if tasks >= GRANULAR_FROM_TASKS {
+            if let Some(bounds) = inst.bounds() {
+                model.slot = hilbert_slots(bounds);
+            }
+        }
         model.cost = model.fill_costs(inst);
         if !conflicts.is_empty() {
             model.conflicts = Some(model.index_conflicts(conflicts));
@@ -246,26 +256,33 @@ impl Model {
                 }
             }
             travel => {
+                let slot = &self.slot;
+                let mut node = vec![0; n1];
+                for (v, &k) in slot.iter().enumerate() {
+                    node[k] = v;
+                }
                 let mut cost = vec![0.0; self.robots * n1 * n1];
                 cost.par_chunks_mut(n1 * n1)
                     .enumerate()
                     .for_each(|(r, m)| match travel {
                         Travel::Dense(t) => {
                             for (k, c) in m.iter_mut().enumerate() {
-                                if k / n1 != k % n1 {
-                                    *c = finite(t[r][k]);
+                                let (a, b) = (node[k / n1], node[k % n1]);
+                                if a != b {
+                                    *c = finite(t[r][a * n1 + b]);
                                 }
                             }
                         }
                         Travel::Bounded { bounds, exact } => {
                             for (k, c) in m.iter_mut().enumerate() {
-                                if k / n1 != k % n1 {
-                                    *c = bounds.bound(r, k / n1, k % n1);
+                                let (a, b) = (node[k / n1], node[k % n1]);
+                                if a != b {
+                                    *c = bounds.bound(r, a, b);
                                 }
                             }
                             for (&(a, b), &v) in &exact[r] {
                                 if a != b {
-                                    m[a * n1 + b] = finite(v);
+                                    m[slot[a] * n1 + slot[b]] = finite(v);
                                 }
                             }
                         }
@@ -375,34 +392,42 @@ impl Model {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn c(&self, r: usize, a: usize, b: usize) -> f64 {
-        let k = (r * self.n1 + a) * self.n1 + b;
         match &self.cost {
-            Costs::Dense(m) => m[k],
-            Costs::Lazy {
-                bounds,
-                exact,
-                near,
-            } => {
-                if a == b {
-                    return 0.0;
-                }
-                if let (false, Some(nb)) = (near.is_empty() || a == 0 || b == 0, &self.neighbours) {
-                    let row = |t: usize| &nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS];
-                    let base = |t: usize| (r * self.tasks + t) * NEIGHBOURS;
-                    if let Some(j) = row(a - 1).iter().position(|&u| u == b - 1) {
-                        return near[(base(a - 1) + j) * 2];
-                    }
-                    if let Some(j) = row(b - 1).iter().position(|&u| u == a - 1) {
-                        return near[(base(b - 1) + j) * 2 + 1];
-                    }
-                }
-                match exact.get(&(k as u64)) {
-                    Some(&v) => v,
-                    None => bounds.bound(r, a, b),
-                }
+            Costs::Dense(m) => m[(r * self.n1 + self.slot[a]) * self.n1 + self.slot[b]],
+            Costs::Lazy { .. } => self.lazy_c(r, a, b),
+        }
+    }
+
+    /// [`Model::c`] of lazy costs: the near-cost cache, the exact arcs, else the bound.
+    #[inline(never)]
+    fn lazy_c(&self, r: usize, a: usize, b: usize) -> f64 {
+        let Costs::Lazy {
+            bounds,
+            exact,
+            near,
+        } = &self.cost
+        else {
+            unreachable!("lazy costs")
+        };
+        if a == b {
+            return 0.0;
+        }
+        if let (false, Some(nb)) = (near.is_empty() || a == 0 || b == 0, &self.neighbours) {
+            let row = |t: usize| &nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS];
+            let base = |t: usize| (r * self.tasks + t) * NEIGHBOURS;
+            if let Some(j) = row(a - 1).iter().position(|&u| u == b - 1) {
+                return near[(base(a - 1) + j) * 2];
             }
+            if let Some(j) = row(b - 1).iter().position(|&u| u == a - 1) {
+                return near[(base(b - 1) + j) * 2 + 1];
+            }
+        }
+        let k = (r * self.n1 + a) * self.n1 + b;
+        match exact.get(&(k as u64)) {
+            Some(&v) => v,
+            None => bounds.bound(r, a, b),
         }
     }
 
@@ -454,6 +479,68 @@ impl Model {
         }
         acc
     }
+}
+
+/// Bits per axis of the grid on which tasks are ordered along a Hilbert curve.
+const HILBERT_BITS: u32 = 16;
+
+/// Each node's slot when the tasks are sorted along a Hilbert curve over their positions
+/// (ties by index); home keeps slot 0.
+fn hilbert_slots(bounds: &Bounds) -> Vec<usize> {
+    let n = bounds.tasks();
+    let points: Vec<_> = (0..n).map(|t| bounds.task_position(t)).collect();
+    let (lo, hi) = points.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), p| {
+            (
+                [lo[0].min(p.x), lo[1].min(p.y)],
+                [hi[0].max(p.x), hi[1].max(p.y)],
+            )
+        },
+    );
+    let side = (1u64 << HILBERT_BITS) as f64 - 1.0;
+    let cell = |v: f64, k: usize| {
+        let span = hi[k] - lo[k];
+        if span > 0.0 && v.is_finite() {
+            (((v - lo[k]) / span) * side).clamp(0.0, side) as u64
+        } else {
+            0
+        }
+    };
+    let mut order: Vec<(u64, usize)> = points
+        .iter()
+        .enumerate()
+        .map(|(t, p)| (hilbert_index(cell(p.x, 0), cell(p.y, 1)), t))
+        .collect();
+    order.sort_unstable();
+    let mut slot = vec![0; n + 1];
+    for (k, &(_, t)) in order.iter().enumerate() {
+        slot[t + 1] = k + 1;
+    }
+    slot
+}
+
+/// Position of grid cell `(x, y)` along the Hilbert curve of side 2^[`HILBERT_BITS`].
+fn hilbert_index(mut x: u64, mut y: u64) -> u64 {
+    let side = 1u64 << HILBERT_BITS;
+    let mut d = 0;
+    let mut s = side / 2;
+    while s > 0 {
+        let rx = u64::from(x & s > 0);
+        let ry = u64::from(y & s > 0);
+        d += s * s * ((3 * rx) ^ ry);
+        // Turn the quadrant so that the curve inside it starts where the last one ended
+        // (bits above `s` are never read again).
+        if ry == 0 {
+            if rx == 1 {
+                x = side - 1 - x;
+                y = side - 1 - y;
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
+    }
+    d
 }
 
 /// Nodes robot `r` reaches from home (`forward`) or from which it reaches

@@ -76,6 +76,11 @@ pub(super) struct Scratch {
     b: Vec<usize>,
     changes: Vec<(usize, usize, i32)>,
     ids: Vec<usize>,
+    /// The granular search's candidate places (robot, gap), each once.
+    pub gaps: Vec<(usize, usize)>,
+    /// `[robot][gap]`: the stamp of the last call that listed that place.
+    pub seen: Vec<Vec<u32>>,
+    pub stamp: u32,
 }
 
 /// Marks a task that no route holds.
