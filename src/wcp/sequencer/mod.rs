@@ -45,6 +45,7 @@ mod exact;
 mod granular;
 mod ils;
 mod instance;
+mod lazy_costs;
 mod local_search;
 mod model;
 mod plan;

@@ -2,13 +2,11 @@
 //! penalised travel times and an index of the conflicts.
 
 use std::collections::HashMap;
-use std::sync::Arc;
 
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
 
-use super::bounds::Bounds;
 use super::instance::Travel;
+use super::lazy_costs::{self, LazyCosts};
 use super::{Conflict, Instance, SequencerError, Step};
 
 /// Largest number of stored arcs (robots × nodes²) for a dense cost matrix (8 bytes each);
@@ -26,15 +24,8 @@ const HOME_CANDIDATES: usize = 4;
 enum Costs {
     /// `[r][slot[from]][slot[to]]` (see [`Model::slot`]).
     Dense(Vec<f64>),
-    /// Bounds, and the exact arcs keyed `(r · n1 + from) · n1 + to` (penalised).
-    Lazy {
-        bounds: Arc<Bounds>,
-        exact: FxHashMap<u64, f64>,
-        /// The costs between each task and its near tasks (granular models), computed once:
-        /// `[((r · tasks + t) · NEIGHBOURS + k) · 2]` from t to its k-th near task, `+ 1`
-        /// back. Nearly every cost a granular search asks for is one of these.
-        near: Vec<f64>,
-    },
+    /// Bounds, the exact arcs and a band of precomputed costs.
+    Lazy(LazyCosts),
 }
 
 /// The nearest tasks of every task, and the robots whose homes are nearest to it.
@@ -196,7 +187,7 @@ impl Model {
         };
         if tasks >= GRANULAR_FROM_TASKS {
             if let Some(bounds) = inst.bounds() {
-                model.slot = hilbert_slots(bounds);
+                model.slot = lazy_costs::hilbert_slots(bounds);
             }
         }
         model.cost = model.fill_costs(inst);
@@ -205,7 +196,6 @@ impl Model {
         }
         if tasks >= GRANULAR_FROM_TASKS {
             model.neighbours = Some(model.neighbours(inst));
-            model.cache_near_costs();
         }
         Ok(model)
     }
@@ -241,19 +231,13 @@ impl Model {
         let finite = |v: f64| if v.is_finite() { v } else { penalty };
         match &inst.travel {
             Travel::Bounded { bounds, exact } if self.robots * n1 * n1 > DENSE_MAX_ARCS => {
-                let mut map = FxHashMap::default();
-                for (r, arcs) in exact.iter().enumerate() {
-                    for (&(a, b), &v) in arcs {
-                        if a != b {
-                            map.insert(((r * n1 + a) * n1 + b) as u64, finite(v));
-                        }
-                    }
-                }
-                Costs::Lazy {
-                    bounds: bounds.clone(),
-                    exact: map,
-                    near: Vec::new(),
-                }
+                Costs::Lazy(LazyCosts::new(
+                    self.robots,
+                    &self.slot,
+                    bounds.clone(),
+                    exact,
+                    &finite,
+                ))
             }
             travel => {
                 let slot = &self.slot;
@@ -396,66 +380,7 @@ impl Model {
     pub fn c(&self, r: usize, a: usize, b: usize) -> f64 {
         match &self.cost {
             Costs::Dense(m) => m[(r * self.n1 + self.slot[a]) * self.n1 + self.slot[b]],
-            Costs::Lazy { .. } => self.lazy_c(r, a, b),
-        }
-    }
-
-    /// [`Model::c`] of lazy costs: the near-cost cache, the exact arcs, else the bound.
-    #[inline(never)]
-    fn lazy_c(&self, r: usize, a: usize, b: usize) -> f64 {
-        let Costs::Lazy {
-            bounds,
-            exact,
-            near,
-        } = &self.cost
-        else {
-            unreachable!("lazy costs")
-        };
-        if a == b {
-            return 0.0;
-        }
-        if let (false, Some(nb)) = (near.is_empty() || a == 0 || b == 0, &self.neighbours) {
-            let row = |t: usize| &nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS];
-            let base = |t: usize| (r * self.tasks + t) * NEIGHBOURS;
-            if let Some(j) = row(a - 1).iter().position(|&u| u == b - 1) {
-                return near[(base(a - 1) + j) * 2];
-            }
-            if let Some(j) = row(b - 1).iter().position(|&u| u == a - 1) {
-                return near[(base(b - 1) + j) * 2 + 1];
-            }
-        }
-        let k = (r * self.n1 + a) * self.n1 + b;
-        match exact.get(&(k as u64)) {
-            Some(&v) => v,
-            None => bounds.bound(r, a, b),
-        }
-    }
-
-    /// Fills the near-cost cache of lazy costs (see [`Costs::Lazy`]).
-    fn cache_near_costs(&mut self) {
-        let (Costs::Lazy { .. }, Some(nb)) = (&self.cost, &self.neighbours) else {
-            return;
-        };
-        let mut cache = vec![f64::NAN; self.robots * self.tasks * NEIGHBOURS * 2];
-        cache
-            .par_chunks_mut(self.tasks * NEIGHBOURS * 2)
-            .enumerate()
-            .for_each(|(r, row)| {
-                for t in 0..self.tasks {
-                    for (j, &u) in nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS]
-                        .iter()
-                        .enumerate()
-                    {
-                        if u != usize::MAX {
-                            let k = (t * NEIGHBOURS + j) * 2;
-                            row[k] = self.c(r, t + 1, u + 1);
-                            row[k + 1] = self.c(r, u + 1, t + 1);
-                        }
-                    }
-                }
-            });
-        if let Costs::Lazy { near, .. } = &mut self.cost {
-            *near = cache;
+            Costs::Lazy(lazy) => lazy.get(r, a, b),
         }
     }
 
@@ -479,68 +404,6 @@ impl Model {
         }
         acc
     }
-}
-
-/// Bits per axis of the grid on which tasks are ordered along a Hilbert curve.
-const HILBERT_BITS: u32 = 16;
-
-/// Each node's slot when the tasks are sorted along a Hilbert curve over their positions
-/// (ties by index); home keeps slot 0.
-fn hilbert_slots(bounds: &Bounds) -> Vec<usize> {
-    let n = bounds.tasks();
-    let points: Vec<_> = (0..n).map(|t| bounds.task_position(t)).collect();
-    let (lo, hi) = points.iter().fold(
-        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-        |(lo, hi), p| {
-            (
-                [lo[0].min(p.x), lo[1].min(p.y)],
-                [hi[0].max(p.x), hi[1].max(p.y)],
-            )
-        },
-    );
-    let side = (1u64 << HILBERT_BITS) as f64 - 1.0;
-    let cell = |v: f64, k: usize| {
-        let span = hi[k] - lo[k];
-        if span > 0.0 && v.is_finite() {
-            (((v - lo[k]) / span) * side).clamp(0.0, side) as u64
-        } else {
-            0
-        }
-    };
-    let mut order: Vec<(u64, usize)> = points
-        .iter()
-        .enumerate()
-        .map(|(t, p)| (hilbert_index(cell(p.x, 0), cell(p.y, 1)), t))
-        .collect();
-    order.sort_unstable();
-    let mut slot = vec![0; n + 1];
-    for (k, &(_, t)) in order.iter().enumerate() {
-        slot[t + 1] = k + 1;
-    }
-    slot
-}
-
-/// Position of grid cell `(x, y)` along the Hilbert curve of side 2^[`HILBERT_BITS`].
-fn hilbert_index(mut x: u64, mut y: u64) -> u64 {
-    let side = 1u64 << HILBERT_BITS;
-    let mut d = 0;
-    let mut s = side / 2;
-    while s > 0 {
-        let rx = u64::from(x & s > 0);
-        let ry = u64::from(y & s > 0);
-        d += s * s * ((3 * rx) ^ ry);
-        // Turn the quadrant so that the curve inside it starts where the last one ended
-        // (bits above `s` are never read again).
-        if ry == 0 {
-            if rx == 1 {
-                x = side - 1 - x;
-                y = side - 1 - y;
-            }
-            std::mem::swap(&mut x, &mut y);
-        }
-        s /= 2;
-    }
-    d
 }
 
 /// Nodes robot `r` reaches from home (`forward`) or from which it reaches
@@ -574,9 +437,10 @@ mod tests {
     use crate::wcp::sequencer::{BoundLimits, Bounds, ExactArcs};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+    use std::sync::Arc;
 
-    /// Lazy costs (too many arcs for a matrix) with the near-cost cache give the instance's
-    /// travel times: exact ones where known, bounds elsewhere.
+    /// Lazy costs (too many arcs for a matrix) with their band give the instance's travel
+    /// times: exact ones where known, bounds elsewhere.
     #[test]
     fn lazy_costs_are_the_instance_travel_times() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
@@ -615,12 +479,31 @@ mod tests {
         let allowed = vec![vec![true; tasks]; robots];
         let inst = Instance::bounded(vec![1.0; tasks], allowed, bounds, Arc::new(exact)).unwrap();
         let model = Model::new(&inst, &[]).unwrap();
-        assert!(matches!(model.cost, Costs::Lazy { ref near, .. } if !near.is_empty()));
+        assert!(matches!(model.cost, Costs::Lazy(_)));
         let nb = model.neighbours.as_ref().unwrap();
+        let mut node = vec![0; tasks + 1];
+        for (v, &k) in model.slot.iter().enumerate() {
+            node[k] = v;
+        }
         for t in 0..50 {
             for u in nb.of(t) {
                 arcs.push((t % robots, t + 1, u + 1));
                 arcs.push((t % robots, u + 1, t + 1));
+            }
+            // Both ends of the band, and just beyond.
+            let s = model.slot[t + 1];
+            for d in [
+                1,
+                lazy_costs::BAND - 1,
+                lazy_costs::BAND,
+                lazy_costs::BAND + 1,
+            ] {
+                for other in [s + d, s.wrapping_sub(d)] {
+                    if other <= tasks {
+                        arcs.push((t % robots, t + 1, node[other]));
+                        arcs.push((t % robots, node[other], t + 1));
+                    }
+                }
             }
         }
         for (r, a, b) in arcs {
