@@ -1,9 +1,8 @@
 //! The instance as the searches see it: who can really do what, finite
 //! penalised travel times and an index of the conflicts.
 
-use std::collections::HashMap;
-
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::instance::Travel;
 use super::lazy_costs::{self, LazyCosts};
@@ -71,66 +70,70 @@ pub(super) struct Model {
     slot: Vec<usize>,
 }
 
-/// Conflicts keyed by (robot, step id), see [`Model::step_id`].
+/// Conflicts keyed by (robot, step id), see [`Model::step_id`]. Each (robot, step id) that
+/// some conflict names gets a dense id: memory grows with the conflicts, not with robots ×
+/// nodes² (every possible step).
 pub(super) struct ConflictIndex {
-    /// Step ids per robot.
-    pub steps: usize,
-    /// `[r * steps + s]`: some conflict names robot r doing step s.
-    hot: Vec<bool>,
+    /// The id of each (robot, step id) some conflict names; only looked up, never iterated.
+    ids: FxHashMap<(usize, usize), usize>,
     /// Robots named by some conflict.
     pub hot_robot: Vec<bool>,
-    /// Conflicts naming (robot, step id); only looked up, never iterated.
-    by_step: HashMap<(usize, usize), Vec<usize>>,
-    /// Both sides of each conflict as (robot, step id).
-    pub sides: Vec<[(usize, usize); 2]>,
+    /// Per id, the conflicts naming it.
+    naming: Vec<Vec<usize>>,
+    /// Both sides of each conflict as (robot, id); no id for a step never made.
+    pub sides: Vec<[(usize, Option<usize>); 2]>,
 }
 
 impl ConflictIndex {
+    /// The id of robot `r` doing step `s`, if some conflict names it.
     #[inline]
-    pub fn hot(&self, r: usize, s: usize) -> bool {
-        self.hot[r * self.steps + s]
+    pub fn id(&self, r: usize, s: usize) -> Option<usize> {
+        self.ids.get(&(r, s)).copied()
     }
 
-    fn naming(&self, r: usize, s: usize) -> &[usize] {
-        self.by_step.get(&(r, s)).map_or(&[], |v| v.as_slice())
+    /// Number of ids: the length of a plan's use counts.
+    pub fn len(&self) -> usize {
+        self.naming.len()
     }
 
-    /// Violated conflicts after `changes` (robot, step id, ±1 uses) to the
-    /// use counts `used`, which violate `viol` now. Only conflicts naming a
-    /// step whose use really changes are looked at.
+    /// Violated conflicts after `changes` (id, ±1 uses) to the use counts `used`, which
+    /// violate `viol` now. Only conflicts naming a step whose use really changes are
+    /// looked at.
     pub fn violations_after(
         &self,
         used: &[u8],
         viol: usize,
-        changes: &mut Vec<(usize, usize, i32)>,
+        changes: &mut Vec<(usize, i32)>,
         ids: &mut Vec<usize>,
     ) -> usize {
         changes.sort_unstable();
-        // Net change per (robot, step).
+        // Net change per id.
         let mut merged = 0;
         for k in 0..changes.len() {
-            let (r, s, d) = changes[k];
-            if merged > 0 && changes[merged - 1].0 == r && changes[merged - 1].1 == s {
-                changes[merged - 1].2 += d;
+            let (h, d) = changes[k];
+            if merged > 0 && changes[merged - 1].0 == h {
+                changes[merged - 1].1 += d;
             } else {
-                changes[merged] = (r, s, d);
+                changes[merged] = (h, d);
                 merged += 1;
             }
         }
         changes.truncate(merged);
-        changes.retain(|c| c.2 != 0);
+        changes.retain(|c| c.1 != 0);
         ids.clear();
-        for &(r, s, _) in changes.iter() {
-            ids.extend_from_slice(self.naming(r, s));
+        for &(h, _) in changes.iter() {
+            ids.extend_from_slice(&self.naming[h]);
         }
         ids.sort_unstable();
         ids.dedup();
-        let now = |(r, s): (usize, usize)| used[r * self.steps + s] > 0;
-        let after = |(r, s): (usize, usize)| {
-            let delta = changes
-                .binary_search_by(|c| (c.0, c.1).cmp(&(r, s)))
-                .map_or(0, |k| changes[k].2);
-            used[r * self.steps + s] as i32 + delta > 0
+        let now = |(_, h): (usize, Option<usize>)| h.is_some_and(|h| used[h] > 0);
+        let after = |(_, h): (usize, Option<usize>)| {
+            h.is_some_and(|h| {
+                let delta = changes
+                    .binary_search_by(|c| c.0.cmp(&h))
+                    .map_or(0, |k| changes[k].1);
+                used[h] as i32 + delta > 0
+            })
         };
         let mut out = viol as i64;
         for &k in ids.iter() {
@@ -324,28 +327,31 @@ impl Model {
     }
 
     fn index_conflicts(&self, conflicts: &[Conflict]) -> ConflictIndex {
-        let steps = self.n1 * self.n1 + self.n1;
         let mut index = ConflictIndex {
-            steps,
-            hot: vec![false; self.robots * steps],
+            ids: FxHashMap::default(),
             hot_robot: vec![false; self.robots],
-            by_step: HashMap::new(),
+            naming: Vec::new(),
             sides: Vec::with_capacity(conflicts.len()),
         };
         for (k, c) in conflicts.iter().enumerate() {
-            let sides = [c.a, c.b].map(|(r, s)| (r, self.step_id(s)));
-            for (r, s) in sides {
+            let sides = [c.a, c.b].map(|(r, s)| {
+                let s = self.step_id(s);
                 // A move from a node to itself is never made: it cannot matter.
-                if !self.never_used(s) {
-                    index.hot[r * steps + s] = true;
-                    index.hot_robot[r] = true;
-                    index.by_step.entry((r, s)).or_default().push(k);
+                if self.never_used(s) {
+                    return (r, None);
                 }
-            }
+                index.hot_robot[r] = true;
+                let fresh = index.naming.len();
+                let h = *index.ids.entry((r, s)).or_insert(fresh);
+                if h == fresh {
+                    index.naming.push(Vec::new());
+                }
+                if index.naming[h].last() != Some(&k) {
+                    index.naming[h].push(k);
+                }
+                (r, Some(h))
+            });
             index.sides.push(sides);
-        }
-        for v in index.by_step.values_mut() {
-            v.dedup();
         }
         index
     }
