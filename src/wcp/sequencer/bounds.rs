@@ -102,6 +102,12 @@ impl Bounds {
             .fold(0.0, f64::max)
     }
 
+    /// Position of task `t`.
+    #[inline]
+    pub fn task_position(&self, t: usize) -> Vec2 {
+        self.tasks[t].0
+    }
+
     /// Distance between the positions of two tasks.
     #[inline]
     pub fn task_distance(&self, a: usize, b: usize) -> f64 {

@@ -117,7 +117,25 @@ fn shifts(
     let cut = c(r1, p, n) - (c(r1, p, s0) + inner(r1, false) + dur + c(r1, sl, n));
     let base = plan.time[r1] + cut;
     // Candidate (robot, gap) pairs; gaps of r1 count in its route once the segment is cut.
-    let mut gaps: Vec<(usize, usize)> = Vec::new();
+    // A gap named twice is looked at once (first place kept: the order stays deterministic).
+    let mut gaps = std::mem::take(&mut scratch.gaps);
+    gaps.clear();
+    scratch.stamp = scratch.stamp.wrapping_add(1);
+    if scratch.stamp == 0 || scratch.seen.len() < model.robots {
+        scratch.seen = vec![Vec::new(); model.robots];
+        scratch.stamp = 1;
+    }
+    let (seen, stamp) = (&mut scratch.seen, scratch.stamp);
+    let mut push = |r2: usize, gap: usize| {
+        let row = &mut seen[r2];
+        if row.len() <= gap {
+            row.resize(gap + 1, 0);
+        }
+        if row[gap] != stamp {
+            row[gap] = stamp;
+            gaps.push((r2, gap));
+        }
+    };
     let anchors = near.of(s0 - 1).chain(near.of(sl - 1));
     for u in anchors {
         let (r2, q) = plan.pos[u];
@@ -126,9 +144,11 @@ fn shifts(
                 continue;
             }
             let q = if q < i { q } else { q - len };
-            gaps.extend([(r1, q - 1), (r1, q)]);
+            push(r1, q - 1);
+            push(r1, q);
         } else {
-            gaps.extend([(r2, q - 1), (r2, q)]);
+            push(r2, q - 1);
+            push(r2, q);
         }
     }
     for &r2 in &near.homes[t] {
@@ -137,18 +157,10 @@ fn shifts(
         } else {
             plan.routes[r2].len() - 2
         };
-        gaps.extend([(r2, 0), (r2, last)]);
+        push(r2, 0);
+        push(r2, last);
     }
-    // A gap named twice is looked at once (first place kept: the order stays deterministic).
-    let mut k = 0;
-    while k < gaps.len() {
-        if gaps[..k].contains(&gaps[k]) {
-            gaps.remove(k);
-        } else {
-            k += 1;
-        }
-    }
-    for (r2, gap) in gaps {
+    for &(r2, gap) in &gaps {
         if (r2 == r1 && gap + 1 == i) || !seg.iter().all(|&v| model.can(r2, v - 1)) {
             continue;
         }
@@ -184,6 +196,7 @@ fn shifts(
             }
         }
     }
+    scratch.gaps = gaps;
 }
 
 /// Exchanges task `t` with each of its near tasks that fits the other's robot.

@@ -24,7 +24,8 @@
 //!
 //! Travel times come from matrices ([`Instance::new`]) or, for large cells,
 //! from lower bounds with the exact times known so far
-//! ([`Instance::bounded`]): nothing is then stored per pair of nodes.
+//! ([`Instance::bounded`]): beyond 2²⁴ arcs only the costs between nodes near each other
+//! along a Hilbert curve of the task positions are stored, in memory linear in the nodes.
 //!
 //! ```
 //! use workcell::wcp::sequencer::{solve, Instance, SequencerOptions};
@@ -45,6 +46,7 @@ mod exact;
 mod granular;
 mod ils;
 mod instance;
+mod lazy_costs;
 mod local_search;
 mod model;
 mod plan;

@@ -1,14 +1,11 @@
 //! The instance as the searches see it: who can really do what, finite
 //! penalised travel times and an index of the conflicts.
 
-use std::collections::HashMap;
-use std::sync::Arc;
-
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use super::bounds::Bounds;
 use super::instance::Travel;
+use super::lazy_costs::{self, LazyCosts};
 use super::{Conflict, Instance, SequencerError, Step};
 
 /// Largest number of stored arcs (robots × nodes²) for a dense cost matrix (8 bytes each);
@@ -24,17 +21,10 @@ const HOME_CANDIDATES: usize = 4;
 
 /// Travel costs: a matrix, or lower bounds computed when asked plus the exact arcs.
 enum Costs {
-    /// `[r][from][to]`.
+    /// `[r][slot[from]][slot[to]]` (see [`Model::slot`]).
     Dense(Vec<f64>),
-    /// Bounds, and the exact arcs keyed `(r · n1 + from) · n1 + to` (penalised).
-    Lazy {
-        bounds: Arc<Bounds>,
-        exact: FxHashMap<u64, f64>,
-        /// The costs between each task and its near tasks (granular models), computed once:
-        /// `[((r · tasks + t) · NEIGHBOURS + k) · 2]` from t to its k-th near task, `+ 1`
-        /// back. Nearly every cost a granular search asks for is one of these.
-        near: Vec<f64>,
-    },
+    /// Bounds, the exact arcs and a band of precomputed costs.
+    Lazy(LazyCosts),
 }
 
 /// The nearest tasks of every task, and the robots whose homes are nearest to it.
@@ -74,68 +64,76 @@ pub(super) struct Model {
     pub conflicts: Option<ConflictIndex>,
     /// Granular neighbourhoods, from [`GRANULAR_FROM_TASKS`] tasks on.
     pub neighbours: Option<Neighbours>,
+    /// Row (and column) of each node in the dense cost matrix: granular models with task
+    /// positions lay the tasks out along a Hilbert curve, so that the arcs a search asks
+    /// for (between near tasks) share cache lines; the order of the search is unchanged.
+    slot: Vec<usize>,
 }
 
-/// Conflicts keyed by (robot, step id), see [`Model::step_id`].
+/// Conflicts keyed by (robot, step id), see [`Model::step_id`]. Each (robot, step id) that
+/// some conflict names gets a dense id: memory grows with the conflicts, not with robots ×
+/// nodes² (every possible step).
 pub(super) struct ConflictIndex {
-    /// Step ids per robot.
-    pub steps: usize,
-    /// `[r * steps + s]`: some conflict names robot r doing step s.
-    hot: Vec<bool>,
+    /// The id of each (robot, step id) some conflict names; only looked up, never iterated.
+    ids: FxHashMap<(usize, usize), usize>,
     /// Robots named by some conflict.
     pub hot_robot: Vec<bool>,
-    /// Conflicts naming (robot, step id); only looked up, never iterated.
-    by_step: HashMap<(usize, usize), Vec<usize>>,
-    /// Both sides of each conflict as (robot, step id).
-    pub sides: Vec<[(usize, usize); 2]>,
+    /// Per id, the conflicts naming it.
+    naming: Vec<Vec<usize>>,
+    /// Both sides of each conflict as (robot, id); no id for a step never made.
+    pub sides: Vec<[(usize, Option<usize>); 2]>,
 }
 
 impl ConflictIndex {
+    /// The id of robot `r` doing step `s`, if some conflict names it.
     #[inline]
-    pub fn hot(&self, r: usize, s: usize) -> bool {
-        self.hot[r * self.steps + s]
+    pub fn id(&self, r: usize, s: usize) -> Option<usize> {
+        self.ids.get(&(r, s)).copied()
     }
 
-    fn naming(&self, r: usize, s: usize) -> &[usize] {
-        self.by_step.get(&(r, s)).map_or(&[], |v| v.as_slice())
+    /// Number of ids: the length of a plan's use counts.
+    pub fn len(&self) -> usize {
+        self.naming.len()
     }
 
-    /// Violated conflicts after `changes` (robot, step id, ±1 uses) to the
-    /// use counts `used`, which violate `viol` now. Only conflicts naming a
-    /// step whose use really changes are looked at.
+    /// Violated conflicts after `changes` (id, ±1 uses) to the use counts `used`, which
+    /// violate `viol` now. Only conflicts naming a step whose use really changes are
+    /// looked at.
     pub fn violations_after(
         &self,
         used: &[u8],
         viol: usize,
-        changes: &mut Vec<(usize, usize, i32)>,
+        changes: &mut Vec<(usize, i32)>,
         ids: &mut Vec<usize>,
     ) -> usize {
         changes.sort_unstable();
-        // Net change per (robot, step).
+        // Net change per id.
         let mut merged = 0;
         for k in 0..changes.len() {
-            let (r, s, d) = changes[k];
-            if merged > 0 && changes[merged - 1].0 == r && changes[merged - 1].1 == s {
-                changes[merged - 1].2 += d;
+            let (h, d) = changes[k];
+            if merged > 0 && changes[merged - 1].0 == h {
+                changes[merged - 1].1 += d;
             } else {
-                changes[merged] = (r, s, d);
+                changes[merged] = (h, d);
                 merged += 1;
             }
         }
         changes.truncate(merged);
-        changes.retain(|c| c.2 != 0);
+        changes.retain(|c| c.1 != 0);
         ids.clear();
-        for &(r, s, _) in changes.iter() {
-            ids.extend_from_slice(self.naming(r, s));
+        for &(h, _) in changes.iter() {
+            ids.extend_from_slice(&self.naming[h]);
         }
         ids.sort_unstable();
         ids.dedup();
-        let now = |(r, s): (usize, usize)| used[r * self.steps + s] > 0;
-        let after = |(r, s): (usize, usize)| {
-            let delta = changes
-                .binary_search_by(|c| (c.0, c.1).cmp(&(r, s)))
-                .map_or(0, |k| changes[k].2);
-            used[r * self.steps + s] as i32 + delta > 0
+        let now = |(_, h): (usize, Option<usize>)| h.is_some_and(|h| used[h] > 0);
+        let after = |(_, h): (usize, Option<usize>)| {
+            h.is_some_and(|h| {
+                let delta = changes
+                    .binary_search_by(|c| c.0.cmp(&h))
+                    .map_or(0, |k| changes[k].1);
+                used[h] as i32 + delta > 0
+            })
         };
         let mut out = viol as i64;
         for &k in ids.iter() {
@@ -188,14 +186,19 @@ impl Model {
             capable_robots,
             conflicts: None,
             neighbours: None,
+            slot: (0..n1).collect(),
         };
+        if tasks >= GRANULAR_FROM_TASKS {
+            if let Some(bounds) = inst.bounds() {
+                model.slot = lazy_costs::hilbert_slots(bounds);
+            }
+        }
         model.cost = model.fill_costs(inst);
         if !conflicts.is_empty() {
             model.conflicts = Some(model.index_conflicts(conflicts));
         }
         if tasks >= GRANULAR_FROM_TASKS {
             model.neighbours = Some(model.neighbours(inst));
-            model.cache_near_costs();
         }
         Ok(model)
     }
@@ -231,41 +234,42 @@ impl Model {
         let finite = |v: f64| if v.is_finite() { v } else { penalty };
         match &inst.travel {
             Travel::Bounded { bounds, exact } if self.robots * n1 * n1 > DENSE_MAX_ARCS => {
-                let mut map = FxHashMap::default();
-                for (r, arcs) in exact.iter().enumerate() {
-                    for (&(a, b), &v) in arcs {
-                        if a != b {
-                            map.insert(((r * n1 + a) * n1 + b) as u64, finite(v));
-                        }
-                    }
-                }
-                Costs::Lazy {
-                    bounds: bounds.clone(),
-                    exact: map,
-                    near: Vec::new(),
-                }
+                Costs::Lazy(LazyCosts::new(
+                    self.robots,
+                    &self.slot,
+                    bounds.clone(),
+                    exact,
+                    &finite,
+                ))
             }
             travel => {
+                let slot = &self.slot;
+                let mut node = vec![0; n1];
+                for (v, &k) in slot.iter().enumerate() {
+                    node[k] = v;
+                }
                 let mut cost = vec![0.0; self.robots * n1 * n1];
                 cost.par_chunks_mut(n1 * n1)
                     .enumerate()
                     .for_each(|(r, m)| match travel {
                         Travel::Dense(t) => {
                             for (k, c) in m.iter_mut().enumerate() {
-                                if k / n1 != k % n1 {
-                                    *c = finite(t[r][k]);
+                                let (a, b) = (node[k / n1], node[k % n1]);
+                                if a != b {
+                                    *c = finite(t[r][a * n1 + b]);
                                 }
                             }
                         }
                         Travel::Bounded { bounds, exact } => {
                             for (k, c) in m.iter_mut().enumerate() {
-                                if k / n1 != k % n1 {
-                                    *c = bounds.bound(r, k / n1, k % n1);
+                                let (a, b) = (node[k / n1], node[k % n1]);
+                                if a != b {
+                                    *c = bounds.bound(r, a, b);
                                 }
                             }
                             for (&(a, b), &v) in &exact[r] {
                                 if a != b {
-                                    m[a * n1 + b] = finite(v);
+                                    m[slot[a] * n1 + slot[b]] = finite(v);
                                 }
                             }
                         }
@@ -323,28 +327,31 @@ impl Model {
     }
 
     fn index_conflicts(&self, conflicts: &[Conflict]) -> ConflictIndex {
-        let steps = self.n1 * self.n1 + self.n1;
         let mut index = ConflictIndex {
-            steps,
-            hot: vec![false; self.robots * steps],
+            ids: FxHashMap::default(),
             hot_robot: vec![false; self.robots],
-            by_step: HashMap::new(),
+            naming: Vec::new(),
             sides: Vec::with_capacity(conflicts.len()),
         };
         for (k, c) in conflicts.iter().enumerate() {
-            let sides = [c.a, c.b].map(|(r, s)| (r, self.step_id(s)));
-            for (r, s) in sides {
+            let sides = [c.a, c.b].map(|(r, s)| {
+                let s = self.step_id(s);
                 // A move from a node to itself is never made: it cannot matter.
-                if !self.never_used(s) {
-                    index.hot[r * steps + s] = true;
-                    index.hot_robot[r] = true;
-                    index.by_step.entry((r, s)).or_default().push(k);
+                if self.never_used(s) {
+                    return (r, None);
                 }
-            }
+                index.hot_robot[r] = true;
+                let fresh = index.naming.len();
+                let h = *index.ids.entry((r, s)).or_insert(fresh);
+                if h == fresh {
+                    index.naming.push(Vec::new());
+                }
+                if index.naming[h].last() != Some(&k) {
+                    index.naming[h].push(k);
+                }
+                (r, Some(h))
+            });
             index.sides.push(sides);
-        }
-        for v in index.by_step.values_mut() {
-            v.dedup();
         }
         index
     }
@@ -375,62 +382,11 @@ impl Model {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn c(&self, r: usize, a: usize, b: usize) -> f64 {
-        let k = (r * self.n1 + a) * self.n1 + b;
         match &self.cost {
-            Costs::Dense(m) => m[k],
-            Costs::Lazy {
-                bounds,
-                exact,
-                near,
-            } => {
-                if a == b {
-                    return 0.0;
-                }
-                if let (false, Some(nb)) = (near.is_empty() || a == 0 || b == 0, &self.neighbours) {
-                    let row = |t: usize| &nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS];
-                    let base = |t: usize| (r * self.tasks + t) * NEIGHBOURS;
-                    if let Some(j) = row(a - 1).iter().position(|&u| u == b - 1) {
-                        return near[(base(a - 1) + j) * 2];
-                    }
-                    if let Some(j) = row(b - 1).iter().position(|&u| u == a - 1) {
-                        return near[(base(b - 1) + j) * 2 + 1];
-                    }
-                }
-                match exact.get(&(k as u64)) {
-                    Some(&v) => v,
-                    None => bounds.bound(r, a, b),
-                }
-            }
-        }
-    }
-
-    /// Fills the near-cost cache of lazy costs (see [`Costs::Lazy`]).
-    fn cache_near_costs(&mut self) {
-        let (Costs::Lazy { .. }, Some(nb)) = (&self.cost, &self.neighbours) else {
-            return;
-        };
-        let mut cache = vec![f64::NAN; self.robots * self.tasks * NEIGHBOURS * 2];
-        cache
-            .par_chunks_mut(self.tasks * NEIGHBOURS * 2)
-            .enumerate()
-            .for_each(|(r, row)| {
-                for t in 0..self.tasks {
-                    for (j, &u) in nb.near[t * NEIGHBOURS..(t + 1) * NEIGHBOURS]
-                        .iter()
-                        .enumerate()
-                    {
-                        if u != usize::MAX {
-                            let k = (t * NEIGHBOURS + j) * 2;
-                            row[k] = self.c(r, t + 1, u + 1);
-                            row[k + 1] = self.c(r, u + 1, t + 1);
-                        }
-                    }
-                }
-            });
-        if let Costs::Lazy { near, .. } = &mut self.cost {
-            *near = cache;
+            Costs::Dense(m) => m[(r * self.n1 + self.slot[a]) * self.n1 + self.slot[b]],
+            Costs::Lazy(lazy) => lazy.get(r, a, b),
         }
     }
 
@@ -487,9 +443,10 @@ mod tests {
     use crate::wcp::sequencer::{BoundLimits, Bounds, ExactArcs};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+    use std::sync::Arc;
 
-    /// Lazy costs (too many arcs for a matrix) with the near-cost cache give the instance's
-    /// travel times: exact ones where known, bounds elsewhere.
+    /// Lazy costs (too many arcs for a matrix) with their band give the instance's travel
+    /// times: exact ones where known, bounds elsewhere.
     #[test]
     fn lazy_costs_are_the_instance_travel_times() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
@@ -528,12 +485,31 @@ mod tests {
         let allowed = vec![vec![true; tasks]; robots];
         let inst = Instance::bounded(vec![1.0; tasks], allowed, bounds, Arc::new(exact)).unwrap();
         let model = Model::new(&inst, &[]).unwrap();
-        assert!(matches!(model.cost, Costs::Lazy { ref near, .. } if !near.is_empty()));
+        assert!(matches!(model.cost, Costs::Lazy(_)));
         let nb = model.neighbours.as_ref().unwrap();
+        let mut node = vec![0; tasks + 1];
+        for (v, &k) in model.slot.iter().enumerate() {
+            node[k] = v;
+        }
         for t in 0..50 {
             for u in nb.of(t) {
                 arcs.push((t % robots, t + 1, u + 1));
                 arcs.push((t % robots, u + 1, t + 1));
+            }
+            // Both ends of the band, and just beyond.
+            let s = model.slot[t + 1];
+            for d in [
+                1,
+                lazy_costs::BAND - 1,
+                lazy_costs::BAND,
+                lazy_costs::BAND + 1,
+            ] {
+                for other in [s + d, s.wrapping_sub(d)] {
+                    if other <= tasks {
+                        arcs.push((t % robots, t + 1, node[other]));
+                        arcs.push((t % robots, node[other], t + 1));
+                    }
+                }
             }
         }
         for (r, a, b) in arcs {

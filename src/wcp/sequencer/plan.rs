@@ -74,8 +74,13 @@ pub(super) enum Move {
 pub(super) struct Scratch {
     a: Vec<usize>,
     b: Vec<usize>,
-    changes: Vec<(usize, usize, i32)>,
+    changes: Vec<(usize, i32)>,
     ids: Vec<usize>,
+    /// The granular search's candidate places (robot, gap), each once.
+    pub gaps: Vec<(usize, usize)>,
+    /// `[robot][gap]`: the stamp of the last call that listed that place.
+    pub seen: Vec<Vec<u32>>,
+    pub stamp: u32,
 }
 
 /// Marks a task that no route holds.
@@ -92,7 +97,8 @@ pub(super) struct Plan {
     pub total: f64,
     /// The three longest routes as (time, robot), for the makespan without some robots.
     top: [(f64, usize); 3],
-    /// With conflicts: `[r * steps + s]`, how often robot r's route uses step s.
+    /// With conflicts: per id of [`super::model::ConflictIndex`], how often its robot's
+    /// route uses its step.
     used: Vec<u8>,
     pub viol: usize,
     /// Per robot, the violated conflicts that name it.
@@ -112,7 +118,7 @@ impl Plan {
             involved: vec![0; model.robots],
         };
         if let Some(ci) = &model.conflicts {
-            plan.used = vec![0; model.robots * ci.steps];
+            plan.used = vec![0; ci.len()];
             for r in 0..model.robots {
                 plan.count_steps(model, r, 1);
             }
@@ -341,13 +347,13 @@ impl Plan {
                 continue;
             }
             model.for_each_step(&self.routes[r], |s| {
-                if ci.hot(r, s) {
-                    changes.push((r, s, -1));
+                if let Some(h) = ci.id(r, s) {
+                    changes.push((h, -1));
                 }
             });
             model.for_each_step(new, |s| {
-                if ci.hot(r, s) {
-                    changes.push((r, s, 1));
+                if let Some(h) = ci.id(r, s) {
+                    changes.push((h, 1));
                 }
             });
         }
@@ -359,10 +365,14 @@ impl Plan {
         let Some(ci) = &model.conflicts else {
             return;
         };
+        if !ci.hot_robot[r] {
+            return;
+        }
         let used = &mut self.used;
         model.for_each_step(&self.routes[r], |s| {
-            let u = &mut used[r * ci.steps + s];
-            *u = u.wrapping_add_signed(sign);
+            if let Some(h) = ci.id(r, s) {
+                used[h] = used[h].wrapping_add_signed(sign);
+            }
         });
     }
 
@@ -387,7 +397,7 @@ impl Plan {
         }
         self.top = top;
         if let Some(ci) = &model.conflicts {
-            let used = |(r, s): (usize, usize)| self.used[r * ci.steps + s] > 0;
+            let used = |(_, h): (usize, Option<usize>)| h.is_some_and(|h| self.used[h] > 0);
             self.viol = 0;
             self.involved.fill(0);
             for [x, y] in ci.sides.iter().filter(|[x, y]| used(*x) && used(*y)) {
