@@ -23,6 +23,8 @@ const AXIS: f64 = 36.0;
 const LEGEND_ROW: f64 = 18.0;
 /// Font size of the task names in their bars.
 const BAR_FONT: f64 = 10.0;
+/// Narrowest bar of a wait, pause or other remedy, in pixels.
+const MIN_REMEDY_WIDTH: f64 = 3.0;
 /// About this many ticks on the time axis.
 const TICKS: f64 = 10.0;
 
@@ -138,7 +140,13 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
         let mut lane = Group::new();
         for bar in &robot.bars {
             let (x0, x1) = (axis.x(bar.start), axis.x(bar.end.min(t1)));
-            let w = (x1 - x0).max(0.5);
+            // A remedy stays visible however short: a pause of 9 ms is what made it work.
+            let least = if matches!(bar.kind, "move" | "task" | "still") {
+                0.5
+            } else {
+                MIN_REMEDY_WIDTH
+            };
+            let w = (x1 - x0).max(least);
             lane = lane.add(
                 Rectangle::new()
                     .set("x", x0)
