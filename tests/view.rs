@@ -156,3 +156,36 @@ fn the_gantt_chart_shows_the_result() {
     assert_eq!(outside, 0);
     assert!(!page.contains("src=") && page.contains("<script>") && page.contains("<style>"));
 }
+
+#[test]
+fn evaluate_draws_the_collision_of_the_sequences_given() {
+    let (solved, gantt, html) = (
+        temp("solved.json"),
+        temp("blind-gantt.svg"),
+        temp("blind.html"),
+    );
+    let result = workcell(&["solve", &shipped("feedback-cell.json"), "--json"]);
+    // The blind sequences collide (round 1 of the solve).
+    let blind = serde_json::to_string(&result["blind_sequences"]).unwrap();
+    std::fs::write(&solved, blind).unwrap();
+    let evaluated = workcell(&[
+        "evaluate",
+        &shipped("feedback-cell.json"),
+        solved.to_str().unwrap(),
+        "--json",
+        "--gantt",
+        gantt.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    let contact = &evaluated["first_collision"];
+    assert!(contact.is_object());
+    let svg = std::fs::read_to_string(&gantt).unwrap();
+    let all: Vec<&str> = texts(&svg).into_iter().map(|t| t.1).collect();
+    assert!(all.contains(&"the collision"));
+    assert!(all
+        .iter()
+        .any(|t| t.contains("COLLISION between R1 and R2")));
+    let page = std::fs::read_to_string(&html).unwrap();
+    assert!(page.contains("\"contact\":{\"round\":null"));
+}

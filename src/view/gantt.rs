@@ -23,6 +23,8 @@ const AXIS: f64 = 36.0;
 const LEGEND_ROW: f64 = 18.0;
 /// Font size of the task names in their bars.
 const BAR_FONT: f64 = 10.0;
+/// Narrowest bar of a wait, pause or other remedy, in pixels.
+const MIN_REMEDY_WIDTH: f64 = 3.0;
 /// About this many ticks on the time axis.
 const TICKS: f64 = 10.0;
 
@@ -128,7 +130,17 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
                 .set("text-anchor", "end"),
         );
     let mut placer = Placer::new([LEFT, 48.0, width, lanes_bottom]);
+    // Collision marks by lane: a task's name is left out of a bar that one would cover.
+    let marked = |robot: &str| -> Vec<f64> {
+        m.rounds
+            .iter()
+            .chain(m.rounds.is_empty().then_some(()).and(m.contact.as_ref()))
+            .filter(|mark| mark.bodies.iter().any(|b| b == robot))
+            .map(|mark| axis.x(mark.time))
+            .collect()
+    };
     for (r, robot) in m.robots.iter().enumerate() {
+        let marks_here = marked(&robot.name);
         let y = HEADER + LANE * r as f64 + (LANE - BAR) / 2.0;
         doc = doc.add(
             text(LEFT - 8.0, y + BAR * 0.75, &robot.name, 12.0, robot.colour)
@@ -136,9 +148,22 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
                 .set("font-weight", "bold"),
         );
         let mut lane = Group::new();
-        for bar in &robot.bars {
+        // Remedies over the moves round them, which would hide a short one.
+        let plain = |kind: &str| matches!(kind, "move" | "task" | "still");
+        let order = robot
+            .bars
+            .iter()
+            .filter(|b| plain(b.kind))
+            .chain(robot.bars.iter().filter(|b| !plain(b.kind)));
+        for bar in order {
             let (x0, x1) = (axis.x(bar.start), axis.x(bar.end.min(t1)));
-            let w = (x1 - x0).max(0.5);
+            // A remedy stays visible however short: a pause of 9 ms is what made it work.
+            let least = if plain(bar.kind) {
+                0.5
+            } else {
+                MIN_REMEDY_WIDTH
+            };
+            let w = (x1 - x0).max(least);
             lane = lane.add(
                 Rectangle::new()
                     .set("x", x0)
@@ -154,7 +179,10 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
                     ))),
             );
             placer.take([x0, y, x0 + w, y + BAR]);
-            if !bar.short.is_empty() && text_width(&bar.short, BAR_FONT) + 4.0 < w {
+            let half = text_width(&bar.short, BAR_FONT) / 2.0 + 6.0;
+            let mid = (x0 + x1) / 2.0;
+            let covered = marks_here.iter().any(|&x| (x - mid).abs() < half);
+            if !bar.short.is_empty() && 2.0 * half - 8.0 < w && !covered {
                 lane = lane.add(
                     text(
                         (x0 + x1) / 2.0,

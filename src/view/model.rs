@@ -440,6 +440,54 @@ mod tests {
         assert_eq!(pose_at(&s, 9.0), [2.0, 4.0, 1.0]);
     }
 
+    fn leg(pieces: Vec<PieceJson>) -> LegJson {
+        LegJson {
+            robot: "R1".to_owned(),
+            leg: 1,
+            on: "move a -> b".to_owned(),
+            pieces,
+        }
+    }
+
+    fn go(scale: f64) -> PieceJson {
+        use crate::wcp::remedy_json::GoJson;
+        PieceJson::Go {
+            go: GoJson {
+                primitives: Vec::new(),
+                scale,
+            },
+        }
+    }
+
+    fn hold(reason: &'static str) -> PieceJson {
+        PieceJson::Hold { hold: 1.0, reason }
+    }
+
+    /// A changed move is told by its pieces, or by the round that changed it.
+    #[test]
+    fn moves_are_told_apart_by_their_remedy() {
+        let kind = |pieces, changes: &[&ChangeJson]| {
+            move_kind("R1", "move a -> b", &[leg(pieces)], changes)
+        };
+        assert_eq!(move_kind("R1", "move a -> b", &[], &[]), "move");
+        assert_eq!(kind(vec![go(2.0)], &[]), "slow");
+        assert_eq!(kind(vec![go(1.0), hold("park"), go(1.0)], &[]), "aside");
+        assert_eq!(kind(vec![go(1.0), hold("pause"), go(1.0)], &[]), "move");
+        assert_eq!(kind(vec![go(1.0)], &[]), "detour");
+        let detour = ChangeJson::Detour(crate::wcp::remedy_json::DetourJson {
+            robot: "R1".to_owned(),
+            on: "move a -> b".to_owned(),
+            around: "R2".to_owned(),
+            path: Vec::new(),
+        });
+        assert_eq!(kind(vec![go(2.0)], &[&detour]), "detour");
+        // Another robot's move is not this one.
+        assert_eq!(
+            move_kind("R2", "move a -> b", &[leg(vec![go(2.0)])], &[]),
+            "move"
+        );
+    }
+
     /// Bit for bit the checker's interpolation, at sample times, between them and outside.
     #[test]
     fn poses_are_the_checkers() {
