@@ -3,8 +3,8 @@
 use super::object_only::object_only;
 use super::InputError;
 use crate::collision::{Body, Scene};
-use crate::geometry::{ConvexPolygon, PolygonError, Vec2};
-use crate::motion::{Motion, Sample, Trajectory, TrajectoryError};
+use crate::geometry::{ConvexPolygon, PolygonError};
+use crate::motion::{Motion, Pose, Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -278,30 +278,9 @@ pub(super) fn polygon(
 
 /// Samples with defaults filled in: theta 0, velocities derived from the positions.
 fn trajectory(raw: &[RawSample]) -> Result<Trajectory, TrajectoryError> {
-    let mut samples: Vec<Sample> = raw
+    let samples = raw
         .iter()
-        .map(|s| Sample {
-            t: s.t,
-            pos: Vec2::new(s.x, s.y),
-            theta: s.theta.unwrap_or(0.0),
-            vel: Vec2::zeros(),
-            omega: 0.0,
-        })
+        .map(|s| Sample::at(s.t, Pose::new(s.x, s.y, s.theta.unwrap_or(0.0))))
         .collect();
-    // Validate before deriving: derivation divides by time steps.
-    Trajectory::new(samples.clone())?;
-    for (k, s) in raw.iter().enumerate() {
-        let complete = s.vx.is_some() && s.vy.is_some() && s.omega.is_some();
-        let (v, w) = if complete {
-            (Vec2::zeros(), 0.0)
-        } else {
-            Trajectory::derived_velocity(&samples, k)
-        };
-        if !(v.x.is_finite() && v.y.is_finite() && w.is_finite()) {
-            return Err(TrajectoryError::DerivedVelocityOverflow { sample: k });
-        }
-        samples[k].vel = Vec2::new(s.vx.unwrap_or(v.x), s.vy.unwrap_or(v.y));
-        samples[k].omega = s.omega.unwrap_or(w);
-    }
-    Trajectory::new(samples)
+    Trajectory::with_given_velocities(samples, |k| [raw[k].vx, raw[k].vy, raw[k].omega])
 }

@@ -21,7 +21,7 @@ use super::schedule::{Activity, BuildError, Collision, Delay, Schedule};
 use super::sequencer::{Bounds, ExactArcs, SequencerError, SequencerOptions};
 use super::time_axis::culprit;
 use crate::cell::{Cell, InputError};
-use crate::collision::{CheckOptions, CheckReport};
+use crate::collision::{CheckOptions, CheckReport, Verdict};
 use crate::geometry::Vec2;
 use crate::motion::Pose;
 use crate::planning::PlannerOptions;
@@ -396,13 +396,13 @@ fn build_error(
 /// Why the checker did not certify a schedule in which it found no collision: its work
 /// budget ran out on a pair, or two bodies graze δ too closely to prove either way.
 pub fn uncertified(report: &CheckReport) -> String {
-    match &report.budget_exhausted {
-        Some(b) => format!(
+    match report.verdict() {
+        Verdict::Unresolved { budget: b } => format!(
             "the checker spent its work budget ({} evaluations) on {} and {} after t = {:.6} \
              without a proof or a witness",
             b.work, b.bodies[0], b.bodies[1], b.time
         ),
-        None => "the checker cannot certify the schedule: two bodies graze delta".to_owned(),
+        _ => "the checker cannot certify the schedule: two bodies graze delta".to_owned(),
     }
 }
 
