@@ -81,11 +81,31 @@ pub struct LoadedScene {
 
 /// Reads and validates the scene file at `path`. Whether f64 can check it depends on the
 /// δ finally used: see [`super::check_precision`].
+///
+/// ```
+/// use workcell::cell::load_scene;
+/// use workcell::collision::{check, CheckOptions};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/paper-fig12b.json");
+/// let loaded = load_scene(path.as_ref())?;
+/// let verdict = check(&loaded.scene, &CheckOptions::default()).verdict();
+/// assert!(verdict.contact().is_some(), "the paper's colliding example: {verdict}");
+/// let e = load_scene("no-such-file.json".as_ref()).unwrap_err();
+/// assert!(e.to_string().starts_with("no-such-file.json: cannot read the file"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
     parse_scene(&read_file(path)?, path)
 }
 
 /// Parses and validates a scene document; `file` is only used to name it in messages.
+///
+/// ```
+/// use workcell::cell::parse_scene;
+/// let text = r#"{"robots": [{"name": "A", "shape": [[0,0],[1,0],[1,1]],
+///                "trajectory": [{"t": 0, "x": 0, "y": 0}, {"t": 1, "x": "far"}]}]}"#;
+/// let e = parse_scene(text, "s.json".as_ref()).unwrap_err();
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("A"), "robots[0].trajectory[1].x"));
+/// ```
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     let raw: RawScene = document(text, file, "scene")?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
