@@ -25,6 +25,8 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# Where the scenes are written and read back for the checker (--out; default: beside this file).
+OUT = HERE
 N_DENSE = 40001  # uniform dense time points per scene (plus all sample times)
 DIGITS = 10      # decimals of positions, angles and shapes in the JSON files
 VDIGITS = 6      # decimals of velocities (central differences, error far below 1e-6)
@@ -540,7 +542,7 @@ def run_checker(binary, path, extra=()):
 
 # --------------------------------------------------------------------------- expectations
 
-# name -> (collision expected, first-contact pair or None, verdict expected with --bound paper)
+# name -> (collision expected, first-contact pair or None, verdict expected with --method adaptive-paper)
 EXPECT = {
     "paper-fig12a": (False, None, False),
     "paper-fig12b": (True, ("R1", "R2"), True),
@@ -573,18 +575,18 @@ def verify(name, scene, checker):
     summary = {"dense_first": dense_first, "min": min(r["min"] for r in reps)}
     if not checker:
         return problems, summary
-    path = os.path.join(HERE, name + ".json")
+    path = os.path.join(OUT, name + ".json")
     code, rep = run_checker(checker, path)
-    pcode, prep = run_checker(checker, path, ["--bound", "paper"])
+    pcode, prep = run_checker(checker, path, ["--method", "adaptive-paper"])
     summary.update(code=code, rep=rep, paper_code=pcode, paper_rep=prep)
     print(f"  workcell check: exit {code}, first_contact {json.dumps(rep['first_contact'])}")
     print(f"                  stats {json.dumps(rep['stats'])}")
-    print(f"  workcell check --bound paper: exit {pcode}, first_contact "
+    print(f"  workcell check --method adaptive-paper: exit {pcode}, first_contact "
           f"{json.dumps(prep['first_contact'])}")
     if code != int(collide):
         problems.append(f"checker exit {code}, expected {int(collide)}")
     if pcode != int(paper_collide):
-        problems.append(f"checker --bound paper exit {pcode}, expected {int(paper_collide)}")
+        problems.append(f"checker --method adaptive-paper exit {pcode}, expected {int(paper_collide)}")
     c = rep["first_contact"]
     if collide and c is not None:
         tc = c["time"]
@@ -678,7 +680,7 @@ def dumps(scene):
 
 
 def write(name, scene):
-    path = os.path.join(HERE, name + ".json")
+    path = os.path.join(OUT, name + ".json")
     with open(path, "w") as fh:
         fh.write(dumps(scene))
     return path
@@ -695,7 +697,12 @@ def main():
     ap.add_argument("--breakdown", action="store_true",
                     help="print the counters of each pair alone (needs --checker)")
     ap.add_argument("--only", nargs="*", metavar="NAME", help="scene names to process")
+    ap.add_argument("--out", metavar="DIR", help="write the scenes there (default: cells/)")
     args = ap.parse_args()
+    global OUT
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        OUT = args.out
     failed, rows, scenes = [], [], {}
     for name, make in SCENES.items():
         if args.only and name not in args.only:

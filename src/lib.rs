@@ -69,4 +69,5 @@ pub mod generate;
 pub mod geometry;
 pub mod motion;
 pub mod planning;
+pub mod view;
 pub mod wcp;

@@ -41,7 +41,7 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Safety margin δ, replacing the scene's (length units of the scene).
-        #[arg(long, value_parser = positive)]
+        #[arg(long, value_parser = positive, allow_negative_numbers = true)]
         delta: Option<f64>,
         /// How each merged interval is searched: `adaptive` (the paper's bisection with a
         /// motion bound true for any input), `adaptive-paper` (with the paper's eq. 12, from
@@ -51,14 +51,18 @@ enum Command {
         #[arg(long, default_value = "adaptive")]
         method: Method,
         /// Time tolerance of the first contact (time units; default 1e-6 of the horizon).
-        #[arg(long, value_parser = positive)]
+        #[arg(long, value_parser = positive, allow_negative_numbers = true)]
         time_tol: Option<f64>,
         /// Also give each pair's counters (`pair_stats` in the JSON).
         #[arg(long)]
         per_pair: bool,
         /// Work budget of each pair, in evaluations of the distance (default 1000000).
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        #[arg(long, value_parser = at_least_one, allow_negative_numbers = true)]
         max_work: Option<u64>,
+        /// Write a self-contained HTML page that animates the scene, its first contact
+        /// highlighted and the certified-free prefix shown on the time slider.
+        #[arg(long)]
+        html: Option<PathBuf>,
     },
     /// Schedule a cell: plan every move, sequence the tasks, check the schedule and re-plan
     /// around collisions until it is collision-free.
@@ -70,11 +74,11 @@ enum Command {
         #[command(flatten)]
         out: cli::solve::Outputs,
         /// Seed of the sequencer's search: the same seed gives the same schedule.
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
         seed: u64,
         /// Rounds of sequencing, checking and feedback before giving up (for the search:
         /// along one branch).
-        #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+        #[arg(long, default_value_t = 200, value_parser = at_least_one, allow_negative_numbers = true)]
         max_iterations: u64,
         #[command(flatten)]
         feedback: cli::solve::FeedbackArgs,
@@ -85,7 +89,7 @@ enum Command {
         export_graph: Option<PathBuf>,
         /// Stop searching after this many seconds (whole solve) and keep the best certified
         /// schedule found so far. Without it the result depends only on the cell and the seed.
-        #[arg(long, value_parser = positive)]
+        #[arg(long, value_parser = positive, allow_negative_numbers = true)]
         time_limit: Option<f64>,
         /// Print a plain progress line on stderr every second (stage, best makespan, elapsed
         /// time) instead of the progress bar.
@@ -101,11 +105,19 @@ enum Command {
     /// Time and check given sequences (the `sequences` object of a solve result).
     ///
     /// Exit status: 0 collision-free, 1 the schedule collides, 2 unusable input.
+    // `--svg` is shared with `solve`, whose picture marks every feedback round's collision.
+    #[command(mut_arg("svg", |a| a.help(
+        "Draw the cell, the paths and the schedule's first collision, if any, as an SVG picture"
+    )))]
     Evaluate {
         /// Cell file (JSON, see README: "Cell file").
         cell: PathBuf,
         /// Sequences file: `{"R1": ["weld-3", "weld-1"], ...}` or a whole solve result.
         sequences: PathBuf,
+        /// Evaluate the collision-blind sequences of a whole solve result (its
+        /// `blind_sequences`, without waits or changed legs) instead of its final ones.
+        #[arg(long)]
+        blind: bool,
         #[command(flatten)]
         out: cli::solve::Outputs,
     },
@@ -143,19 +155,19 @@ enum Command {
         #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(cli::generate::kind_names()))]
         kind: String,
         /// Seed: the same seed gives the same scenes.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         seed: u64,
         /// Number of robots (`hall`: default 10; `cell`: required, at most 1,000).
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000), allow_negative_numbers = true)]
         robots: Option<u64>,
         /// Number of tasks of a cell (`cell` only, required).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         tasks: Option<u64>,
         /// Number of fixtures of a cell (`cell` only; default 3 per 50 tasks).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         fixtures: Option<u64>,
         /// Number of scenes or cells (default 10 scenes, 1 cell).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         count: Option<u64>,
         /// Output folder, created if missing.
         #[arg(long)]
@@ -167,6 +179,14 @@ fn positive(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("expected a positive number, got `{s}`")),
+    }
+}
+
+/// A count of at least 1 (clap's own range check would print `1..18446744073709551615`).
+pub(crate) fn at_least_one(s: &str) -> Result<u64, String> {
+    match s.parse::<u64>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!("expected a whole number of at least 1, got `{s}`")),
     }
 }
 
@@ -234,6 +254,7 @@ fn main() -> ExitCode {
             time_tol,
             per_pair,
             max_work,
+            html,
         } => {
             let defaults = CheckOptions::default();
             let opts = CheckOptions {
@@ -244,7 +265,7 @@ fn main() -> ExitCode {
                 max_work_per_pair: max_work.unwrap_or(defaults.max_work_per_pair),
                 ..defaults
             };
-            cli::check::run_check(&scene, json, &opts)
+            cli::check::run_check(&scene, json, &opts, html.as_deref())
         }
         Command::Solve {
             cell,
@@ -277,8 +298,9 @@ fn main() -> ExitCode {
         Command::Evaluate {
             cell,
             sequences,
+            blind,
             out,
-        } => cli::solve::run_evaluate(&cell, &sequences, &out),
+        } => cli::solve::run_evaluate(&cell, &sequences, blind, &out),
         Command::Generate {
             kind,
             seed,

@@ -93,7 +93,7 @@ fn the_table_lists_every_method_asked_for() {
     ]);
     assert_eq!(o.status.code(), Some(0));
     let table = String::from_utf8(o.stdout).unwrap();
-    assert!(table.starts_with("1 scenes, 1 colliding"), "{table}");
+    assert!(table.starts_with("1 scene, 1 colliding"), "{table}");
     assert!(table.contains("| adaptive | "), "{table}");
     assert!(table.contains("| sampled:0.5 | "), "{table}");
 }

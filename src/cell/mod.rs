@@ -20,6 +20,8 @@ pub use precision::{
 };
 pub use scene_file::{load_scene, parse_scene, LoadedScene};
 pub use scene_writer::scene_document;
-pub use sequences_file::{load_sequences, parse_sequences, Sequences, Wait};
+pub use sequences_file::{
+    load_blind_sequences, load_sequences, parse_blind_sequences, parse_sequences, Sequences, Wait,
+};
 pub(crate) use time_axis::number;
 pub use time_axis::{keeps_length, TASK_LENGTH_TOL};

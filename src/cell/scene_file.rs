@@ -107,7 +107,8 @@ pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
 /// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("A"), "robots[0].trajectory[1].x"));
 /// ```
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
-    let raw: RawScene = document(text, file, "scene")?;
+    let raw: RawScene =
+        document(text, file, "scene").map_err(|e| cell_instead(text, file).unwrap_or(e))?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
     if !(delta.is_finite() && delta > 0.0) {
         return Err(InputError::new(
@@ -167,6 +168,18 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
         scene: Scene { delta, bodies },
         warnings,
     })
+}
+
+/// A scene that does not parse but has the `tasks` of a cell is most likely a cell given
+/// where a scene was expected: say so rather than which scene field is missing.
+fn cell_instead(text: &str, file: &Path) -> Option<InputError> {
+    // A map, not a struct: serde would read a struct from an array as well.
+    let keys: std::collections::HashMap<String, serde::de::IgnoredAny> =
+        serde_json::from_str(text).ok()?;
+    keys.contains_key("tasks").then_some(())?;
+    let reason = "this is a cell, not a scene: use `workcell solve` on it, or \
+                  `workcell solve --export-scene` to get the scene of its schedule";
+    Some(InputError::new(file, None, "tasks", reason))
 }
 
 /// The text of the file at `path`.

@@ -48,6 +48,31 @@ const NOT_SEQUENCES: &str = "expected an object mapping robot names to lists of 
 /// A whole result also brings its `waits` (`[{"robot", "before_move", "duration"}]`) and
 /// `legs` (see [`super::parse_legs`]), so that the schedule is the one `solve` certified.
 pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences, InputError> {
+    parse(text, file, cell, "sequences")
+}
+
+/// Reads the collision-blind sequences of the `solve --json` result at `path` (its
+/// `blind_sequences`): see [`parse_blind_sequences`].
+pub fn load_blind_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
+    parse_blind_sequences(&super::scene_file::read_file(path)?, path, cell)
+}
+
+/// The sequencer's collision-blind sequences of a whole `solve --json` result, read from its
+/// `blind_sequences` as [`parse_sequences`] reads `sequences`, without waits or changed
+/// legs (they belong to the final schedule). Refused as there, and when `text` is not a
+/// whole result or has no `blind_sequences` (an `evaluate` result has none).
+pub fn parse_blind_sequences(
+    text: &str,
+    file: &Path,
+    cell: &Cell,
+) -> Result<Sequences, InputError> {
+    parse(text, file, cell, "blind_sequences")
+}
+
+/// Reads the routes of `key` in a whole result (`sequences`: with its waits and legs), or,
+/// for `sequences` only, the document itself as a map of robots to task lists.
+fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, InputError> {
+    let blind = key != "sequences";
     let err = |body: Option<&str>, field: &str, reason: String| {
         InputError::new(file, body, field, reason)
     };
@@ -66,11 +91,22 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
     // a robot's name.
     let whole =
         top.iter().any(|(k, _)| k == "makespan") && top.iter().any(|(k, _)| k == "sequences");
+    if blind && !whole {
+        let reason = "not a whole `solve --json` result (with `makespan` and `sequences`)";
+        return Err(err(None, "", reason.to_owned()));
+    }
+    let prefix = format!("{key}.");
     let (prefix, robots) = if whole {
-        let raw = find("sequences")?.expect("present");
-        let robots =
-            entries(raw.get()).map_err(|_| err(None, "sequences", NOT_SEQUENCES.to_owned()))?;
-        ("sequences.", robots)
+        let raw = match find(key)? {
+            Some(raw) if raw.get() != "null" => raw,
+            _ => {
+                let reason =
+                    "the result has no collision-blind sequences (only `solve` gives them)";
+                return Err(err(None, key, reason.to_owned()));
+            }
+        };
+        let robots = entries(raw.get()).map_err(|_| err(None, key, NOT_SEQUENCES.to_owned()))?;
+        (prefix.as_str(), robots)
     } else {
         ("", top.clone())
     };
@@ -126,19 +162,15 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
         let name = &cell.tasks[t].name;
         let reason =
             format!("task \"{name}\" is in no robot's sequence: every task must be done once");
-        let field = if whole {
-            "sequences"
-        } else {
-            "(every robot's list)"
-        };
+        let field = if whole { key } else { "(every robot's list)" };
         return Err(err(Some(name), field, reason));
     }
-    let waits = match find("waits")?.filter(|_| whole) {
+    let waits = match find("waits")?.filter(|_| whole && !blind) {
         Some(list) if list.get() != "null" => waits(list, file, cell, &routes)?,
         _ => Vec::new(),
     };
     // Changed moves are few (one per remedy): read as a tree.
-    let legs = match find("legs")?.filter(|_| whole) {
+    let legs = match find("legs")?.filter(|_| whole && !blind) {
         Some(list) if list.get() != "null" => {
             let list: serde_json::Value = serde_json::from_str(list.get())
                 .map_err(|e| err(None, "legs", format!("not valid JSON: {e}")))?;

@@ -11,8 +11,16 @@ use workcell::collision::{check, validate, CheckOptions, CheckReport, Verdict};
 const EXIT_UNRESOLVED: u8 = 3;
 
 /// Runs the check; the exit status is 0 collision-free, 1 collision, 3 unresolved within
-/// the work budget.
-pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCode, InputError> {
+/// the work budget. `html`: the animated page of the scene, written after the check.
+pub fn run_check(
+    path: &Path,
+    json: bool,
+    opts: &CheckOptions,
+    html: Option<&Path>,
+) -> Result<ExitCode, InputError> {
+    if let Some(file) = html {
+        super::output::check_outputs(&[path], &[("--html", file)])?;
+    }
     let loaded = load_scene(path)?;
     check_precision(
         &loaded.scene,
@@ -37,14 +45,18 @@ pub fn run_check(path: &Path, json: bool, opts: &CheckOptions) -> Result<ExitCod
     };
     // A closed pipe (`| head`) is the reader's choice, not an error of ours.
     let _ = std::io::stdout().write_all(text.as_bytes());
+    if let Some(file) = html {
+        let model = workcell::view::Model::of_check(path, &loaded.scene, &report);
+        super::output::write_file(file, workcell::view::html(&model).as_bytes())?;
+    }
     if report.stats.unresolved > 0 {
         return Err(InputError {
             file: path.to_path_buf(),
             body: None,
             field: String::new(),
             reason: format!(
-                "{} intervals could not be resolved in f64 at these coordinates: no proof",
-                report.stats.unresolved
+                "{} could not be resolved in f64 at these coordinates: no proof",
+                super::counted(report.stats.unresolved, "interval")
             ),
         });
     }
@@ -73,8 +85,8 @@ fn summary(
         format!("not certified: `{method}` certifies nothing")
     } else if r.stats.unresolved > 0 {
         format!(
-            "not certified: {} intervals unresolved in f64",
-            r.stats.unresolved
+            "not certified: {} unresolved in f64",
+            super::counted(r.stats.unresolved, "interval")
         )
     } else if r.stats.grazing > 0 {
         "NOT CERTIFIED: within the grazing allowance".to_owned()
@@ -152,16 +164,16 @@ fn summary(
     }
     if s.grazing > 0 {
         line(format!(
-            "NOT CERTIFIED: {} intervals (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
-            s.grazing, opts.grazing_tol
+            "NOT CERTIFIED: {} (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
+            super::counted(s.grazing, "interval"), opts.grazing_tol
         ));
     }
     line(format!(
-        "{} pairs checked ({} more pruned by the broad phase) in {:.3} ms on {} threads",
-        r.pairs,
+        "{} checked ({} more pruned by the broad phase) in {:.3} ms on {}",
+        super::counted(r.pairs as u64, "pair"),
         r.pairs_pruned,
         elapsed.as_secs_f64() * 1e3,
-        threads
+        super::counted(threads as u64, "thread")
     ));
     out
 }

@@ -93,15 +93,18 @@ fn scene_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, InputError> {
 
 fn table(c: &Comparison) -> String {
     let mut out = format!(
-        "{} scenes, {} colliding according to the reference (adaptive at a time tolerance of {REFERENCE_TIME_TOL:e} of the horizon); {} threads\n\n",
-        c.scenes, c.colliding, c.threads
+        "{}, {} colliding according to the reference (adaptive at a time tolerance of {REFERENCE_TIME_TOL:e} of the horizon); {}\n\n",
+        super::counted(c.scenes as u64, "scene"), c.colliding, super::counted(c.threads as u64, "thread")
     );
     out += "| method | median µs per check | missed | invented | max time error |\n";
     out += "|---|---:|---:|---:|---:|\n";
     for m in &c.methods {
         let error = m.max_time_error.map_or("-".into(), |e| format!("{e:.2e}"));
         let unsupported = if m.unsupported > 0 {
-            format!(" ({} scenes unsupported)", m.unsupported)
+            format!(
+                " ({} unsupported)",
+                super::counted(m.unsupported as u64, "scene")
+            )
         } else {
             String::new()
         };

@@ -7,7 +7,10 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-use workcell::cell::{load_cell, load_sequences, scene_document, Cell, InputError};
+use workcell::cell::{
+    load_blind_sequences, load_cell, load_sequences, scene_document, Cell, InputError,
+};
+use workcell::view;
 use workcell::wcp::remedy_json::legs_json;
 use workcell::wcp::report::{
     collision_json, rounds_json, schedule_json, sequences_json, summary, waits_json, ResultJson,
@@ -28,6 +31,12 @@ pub struct Outputs {
     /// Draw the cell, the paths and the collisions fed back as an SVG picture.
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Draw the schedule as a Gantt chart (SVG): one lane per robot.
+    #[arg(long)]
+    gantt: Option<PathBuf>,
+    /// Write a self-contained HTML page that animates the schedule.
+    #[arg(long)]
+    html: Option<PathBuf>,
 }
 
 /// How `solve` feeds collisions back.
@@ -38,11 +47,11 @@ pub struct FeedbackArgs {
     #[arg(long, default_value = "search", value_parser = ["search", "greedy"])]
     feedback: String,
     /// The search's budget: most schedules checked.
-    #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, default_value_t = 5000, value_parser = crate::at_least_one, allow_negative_numbers = true)]
     search_nodes: u64,
     /// The search's time limit, in seconds (a safety stop; the result is deterministic
     /// when it is not reached).
-    #[arg(long, default_value_t = 60.0, value_parser = positive_seconds)]
+    #[arg(long, default_value_t = 60.0, value_parser = positive_seconds, allow_negative_numbers = true)]
     search_time: f64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour, step-aside (default: all).
@@ -269,33 +278,28 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
         let doc = serde_json::to_string_pretty(&graph.export(&cell)).expect("a graph serialises");
         written = written.and(write(file, &doc));
     }
-    let collisions: Vec<&Collision> = solved
-        .iterations
-        .iter()
-        .filter_map(|i| i.collision.as_ref())
-        .collect();
-    let written = written.and(exports(&cell, &solved.schedule, &collisions, out));
     let final_collision = solved.iterations.last().and_then(|i| i.collision.as_ref());
+    let (sequences, schedule) = schedule_json(&cell, &solved.schedule);
+    let json = ResultJson {
+        makespan: solved.schedule.makespan,
+        collision_free: solved.collision_free,
+        sequences,
+        iterations: solved.iterations.len(),
+        schedules_checked: Some(solved.nodes),
+        waits: waits_json(&cell, &solved.delays()),
+        legs: legs_json(&cell, &solved.routes, &solved.legs),
+        blind_sequences: Some(sequences_json(&cell, &solved.blind_routes)),
+        blind_makespan: Some(solved.blind_makespan),
+        blind_optimal: Some(solved.blind_optimal),
+        first_collision: final_collision.map(|c| collision_json(&cell, c)),
+        feedback: rounds_json(&cell, &solved.iterations),
+        failure: solved.failure.clone(),
+        schedule,
+        check_stats: solved.report.stats,
+        stages_ms: solved.times.into(),
+    };
+    let written = written.and(exports(&cell, &solved.schedule, &json, out));
     let text = if out.json {
-        let (sequences, schedule) = schedule_json(&cell, &solved.schedule);
-        let json = ResultJson {
-            makespan: solved.schedule.makespan,
-            collision_free: solved.collision_free,
-            sequences,
-            iterations: solved.iterations.len(),
-            schedules_checked: Some(solved.nodes),
-            waits: waits_json(&cell, &solved.delays()),
-            legs: legs_json(&cell, &solved.routes, &solved.legs),
-            blind_sequences: Some(sequences_json(&cell, &solved.blind_routes)),
-            blind_makespan: Some(solved.blind_makespan),
-            blind_optimal: Some(solved.blind_optimal),
-            first_collision: final_collision.map(|c| collision_json(&cell, c)),
-            feedback: rounds_json(&cell, &solved.iterations),
-            failure: solved.failure.clone(),
-            schedule,
-            check_stats: solved.report.stats,
-            stages_ms: solved.times.into(),
-        };
         serde_json::to_string_pretty(&json).expect("a result serialises") + "\n"
     } else {
         let mut text = format!("{}: ", path.display());
@@ -331,14 +335,22 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
 }
 
 /// Evaluates given sequences; exit status 0 collision-free, 1 the schedule collides.
-pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<ExitCode, InputError> {
+/// With `blind`, the sequences are a solve result's collision-blind ones.
+pub fn run_evaluate(
+    path: &Path,
+    sequences: &Path,
+    blind: bool,
+    out: &Outputs,
+) -> Result<ExitCode, InputError> {
     check_paths(&[path, sequences], out, None)?;
     let cell = load(path)?;
-    let given = load_sequences(sequences, &cell)?;
+    let given = if blind {
+        load_blind_sequences(sequences, &cell)?
+    } else {
+        load_sequences(sequences, &cell)?
+    };
     let opts = SolveOptions::default();
     let evaluated = wcp::evaluate(&cell, &given, &opts, sequences)?;
-    let collisions: Vec<&Collision> = evaluated.collision.iter().collect();
-    let written = exports(&cell, &evaluated.schedule, &collisions, out);
     let failure = match (&evaluated.collision, evaluated.report.certified) {
         (Some(c), _) => Some(format!(
             "the schedule collides: {}",
@@ -347,29 +359,30 @@ pub fn run_evaluate(path: &Path, sequences: &Path, out: &Outputs) -> Result<Exit
         (None, false) => Some(wcp::uncertified(&evaluated.report)),
         (None, true) => None,
     };
+    let (sequence_names, schedule) = schedule_json(&cell, &evaluated.schedule);
+    let json = ResultJson {
+        makespan: evaluated.schedule.makespan,
+        collision_free: evaluated.collision_free,
+        sequences: sequence_names,
+        iterations: 1,
+        schedules_checked: None,
+        waits: waits_json(&cell, &evaluated.delays),
+        legs: legs_json(&cell, &evaluated.routes, &evaluated.legs),
+        blind_sequences: None,
+        blind_makespan: None,
+        blind_optimal: None,
+        first_collision: evaluated
+            .collision
+            .as_ref()
+            .map(|c| collision_json(&cell, c)),
+        feedback: Vec::new(),
+        failure: failure.clone(),
+        schedule,
+        check_stats: evaluated.report.stats,
+        stages_ms: evaluated.times.into(),
+    };
+    let written = exports(&cell, &evaluated.schedule, &json, out);
     let text = if out.json {
-        let (sequences, schedule) = schedule_json(&cell, &evaluated.schedule);
-        let json = ResultJson {
-            makespan: evaluated.schedule.makespan,
-            collision_free: evaluated.collision_free,
-            sequences,
-            iterations: 1,
-            schedules_checked: None,
-            waits: waits_json(&cell, &evaluated.delays),
-            legs: legs_json(&cell, &evaluated.routes, &evaluated.legs),
-            blind_sequences: None,
-            blind_makespan: None,
-            blind_optimal: None,
-            first_collision: evaluated
-                .collision
-                .as_ref()
-                .map(|c| collision_json(&cell, c)),
-            feedback: Vec::new(),
-            failure: failure.clone(),
-            schedule,
-            check_stats: evaluated.report.stats,
-            stages_ms: evaluated.times.into(),
-        };
         serde_json::to_string_pretty(&json).expect("a result serialises") + "\n"
     } else {
         let verdict = failure
@@ -398,23 +411,35 @@ fn load(path: &Path) -> Result<Cell, InputError> {
     Ok(loaded.cell)
 }
 
-/// Writes `--export-scene` and `--svg`; every file is attempted before an error is returned.
+/// Writes `--export-scene` and the pictures, drawn from the result document; every file is
+/// attempted before an error is returned.
 fn exports(
     cell: &Cell,
     schedule: &Schedule,
-    collisions: &[&Collision],
+    json: &ResultJson,
     out: &Outputs,
 ) -> Result<(), InputError> {
     let mut result = Ok(());
+    let scene = schedule.scene(cell);
     if let Some(file) = &out.export_scene {
-        let doc = scene_document(&schedule.scene(cell));
+        let doc = scene_document(&scene);
         result = result.and(write(
             file,
             &serde_json::to_string_pretty(&doc).expect("a scene serialises"),
         ));
     }
+    if out.svg.is_none() && out.gantt.is_none() && out.html.is_none() {
+        return result;
+    }
+    let model = view::Model::of_result(cell, &scene, json);
     if let Some(file) = &out.svg {
-        result = result.and(write(file, &wcp::picture(cell, schedule, collisions)));
+        result = result.and(write(file, &view::picture(&model)));
+    }
+    if let Some(file) = &out.gantt {
+        result = result.and(write(file, &view::gantt(&model)));
+    }
+    if let Some(file) = &out.html {
+        result = result.and(write(file, &view::html(&model)));
     }
     result
 }
@@ -432,6 +457,8 @@ fn check_paths(
     let outputs: Vec<(&str, &Path)> = [
         ("--export-scene", out.export_scene.as_deref()),
         ("--svg", out.svg.as_deref()),
+        ("--gantt", out.gantt.as_deref()),
+        ("--html", out.html.as_deref()),
         ("--export-graph", export_graph),
     ]
     .into_iter()

@@ -8,9 +8,7 @@
 //! the largest error of the first contact time. With the feature `parry-peer`, parry2d-f64's
 //! nonlinear shape cast runs as the method `parry` and cross-checks the reference.
 
-mod chart;
-
-pub use chart::chart;
+pub use crate::view::chart;
 
 use crate::cell::InputError;
 use crate::collision::{check, validate, CheckOptions, CheckReport, Method, Scene};
@@ -57,7 +55,18 @@ impl FromStr for Contender {
             "parry" => Err(
                 "the parry peer is not built in: build with `--features parry-peer`".to_string(),
             ),
-            _ => s.parse().map(Contender::Ours),
+            // The methods' own list does not know the peer.
+            _ => s.parse().map(Contender::Ours).map_err(|e: String| {
+                let parry = if cfg!(feature = "parry-peer") {
+                    "parry"
+                } else {
+                    "parry (with the feature parry-peer)"
+                };
+                match e.strip_suffix("sampled:STEP or advance") {
+                    Some(head) => format!("{head}sampled:STEP, advance or {parry}"),
+                    None => e,
+                }
+            }),
         }
     }
 }

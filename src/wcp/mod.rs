@@ -19,7 +19,7 @@ mod feedback;
 mod graph;
 pub mod legs;
 mod moves;
-mod picture;
+
 pub mod remedy_json;
 pub mod report;
 mod schedule;
@@ -39,7 +39,7 @@ pub use graph::{
 pub use moves::{
     bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore,
 };
-pub use picture::picture;
+
 pub use schedule::{
     route_nodes, Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,
 };

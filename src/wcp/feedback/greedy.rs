@@ -73,8 +73,9 @@ pub fn solve(
         };
         if iterations.len() + 1 >= opts.max_iterations {
             let failure = format!(
-                "no collision-free schedule within {} iterations; the last one collides: {}",
+                "no collision-free schedule within {} iteration{}; the last one collides: {}",
                 opts.max_iterations,
+                if opts.max_iterations == 1 { "" } else { "s" },
                 describe(cell, &c)
             );
             iterations.push(Iteration {

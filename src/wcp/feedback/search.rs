@@ -197,8 +197,9 @@ pub(super) fn solve(
     while let Some(Reverse((.., id))) = search.queue.pop() {
         if search.checked >= opts.search.max_nodes {
             stop = Some(format!(
-                "the search's budget of {} schedules",
-                opts.search.max_nodes
+                "the search's budget of {} schedule{}",
+                opts.search.max_nodes,
+                if opts.search.max_nodes == 1 { "" } else { "s" }
             ));
             break;
         }
@@ -233,8 +234,9 @@ pub(super) fn solve(
             let why = match stop {
                 Some(budget) => format!("no collision-free schedule within {budget}"),
                 None => format!(
-                    "no remedy separates the robots within {} rounds",
-                    opts.max_iterations
+                    "no remedy separates the robots within {} round{}",
+                    opts.max_iterations,
+                    if opts.max_iterations == 1 { "" } else { "s" }
                 ),
             };
             let failure = format!(

@@ -1,7 +1,7 @@
 //! The trade-off at a glance: time per check (log) against collisions missed, one point per
 //! method and sampling step.
 
-use super::Comparison;
+use crate::compare::Comparison;
 use svg::node::element::{Circle, Group, Line, Polyline, Rectangle, Text};
 use svg::Document;
 
@@ -131,11 +131,15 @@ pub fn chart(c: &Comparison) -> String {
             name.to_string()
         };
         let width = LABEL_CHAR_WIDTH * label.chars().count() as f64;
-        let left = px + 8.0 + width > WIDTH - 4.0;
-        let (x0, anchor) = if left {
+        // Inside the plot: left of the point when the right would run past the axis's end,
+        // and against the axis's start when neither side has room.
+        let left = px + 8.0 + width > RIGHT;
+        let (x0, anchor) = if !left {
+            (px + 8.0, "start")
+        } else if px - 8.0 - width >= LEFT {
             (px - 8.0 - width, "end")
         } else {
-            (px + 8.0, "start")
+            (LEFT + 2.0, "start")
         };
         let mut base = py - 8.0;
         let overlaps = |base: f64, r: &[f64; 4]| {
@@ -153,7 +157,7 @@ pub fn chart(c: &Comparison) -> String {
         }
         taken.push([x0, base - LABEL_HEIGHT + 2.0, x0 + width, base + 2.0]);
         if base < py - 8.0 - 1.0 {
-            let lx = if left { x0 + width } else { x0 };
+            let lx = if anchor == "end" { x0 + width } else { x0 };
             doc = doc.add(
                 line(px, py - 5.0, lx, base - 4.0)
                     .set("stroke", colour(name))
@@ -171,8 +175,13 @@ pub fn chart(c: &Comparison) -> String {
                     .set("stroke-width", 2),
             )
             .add(
-                text(if left { px - 8.0 } else { x0 }, base, &label, anchor)
-                    .set("fill", colour(name)),
+                text(
+                    if anchor == "end" { x0 + width } else { x0 },
+                    base,
+                    &label,
+                    anchor,
+                )
+                .set("fill", colour(name)),
             );
     }
     doc.to_string()
@@ -209,4 +218,61 @@ fn text(x: f64, y: f64, content: &str, anchor: &str) -> Text {
         .set("x", x)
         .set("y", y)
         .set("text-anchor", anchor)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compare::MethodSummary;
+
+    fn method(name: &str, median_us: f64, missed: usize) -> MethodSummary {
+        MethodSummary {
+            method: name.to_owned(),
+            median_us,
+            missed,
+            invented: 0,
+            max_time_error: None,
+            unsupported: 0,
+        }
+    }
+
+    /// Every label's estimated box ends inside the plot, even next to the last decade.
+    #[test]
+    fn labels_stay_inside_the_plot() {
+        let c = Comparison {
+            scenes: 10,
+            colliding: 5,
+            methods: vec![
+                method("adaptive", 10.0, 0),
+                method("a-rather-long-method-name:0.0001", 999.0, 3),
+                method("sampled:0.001", 1000.0, 0),
+                method("sampled:1", 1.0, 3),
+            ],
+            disagreements: Vec::new(),
+            threads: 2,
+        };
+        let svg = chart(&c);
+        let mut checked = 0;
+        for piece in svg.split("<text").skip(1) {
+            let tag = &piece[..piece.find('>').unwrap()];
+            let attr = |name: &str| -> Option<f64> {
+                let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+                tag[at..].split('"').next()?.parse().ok()
+            };
+            let content = &piece[piece.find('>').unwrap() + 1..piece.find("</text>").unwrap()];
+            let width = LABEL_CHAR_WIDTH * content.chars().count() as f64;
+            let x = attr("x").unwrap();
+            if !tag.contains("fill=") {
+                continue; // the axes' own labels
+            }
+            let (x0, x1) = if tag.contains("text-anchor=\"end\"") {
+                (x - width, x)
+            } else {
+                (x, x + width)
+            };
+            assert!(x0 >= LEFT && x1 <= RIGHT, "{content} at [{x0}, {x1}]");
+            checked += 1;
+        }
+        assert_eq!(checked, 4);
+    }
 }

@@ -1,0 +1,293 @@
+//! `--gantt`: one lane per robot, its moves, tasks, waits and remedies as coloured bars over
+//! a time axis; the makespan and the collision of each feedback round marked.
+
+use super::labels::{text_width, Placer};
+use super::model::{kind_colour, Model, KINDS};
+use super::picture::{line, text};
+use svg::node::element::{Group, Polygon, Rectangle, Title};
+use svg::Document;
+
+/// Width of the chart.
+pub const WIDTH: f64 = 1000.0;
+/// Left of the time axis: room for the robots' names.
+const LEFT: f64 = 90.0;
+/// Right margin.
+const RIGHT: f64 = 40.0;
+/// Room for the title and the verdict, and the makespan's label below them.
+const HEADER: f64 = 74.0;
+/// Height of a lane and of a bar in it.
+const LANE: f64 = 34.0;
+const BAR: f64 = 16.0;
+/// The time axis under the lanes, and a legend row.
+const AXIS: f64 = 36.0;
+const LEGEND_ROW: f64 = 18.0;
+/// Font size of the task names in their bars.
+const BAR_FONT: f64 = 10.0;
+/// About this many ticks on the time axis.
+const TICKS: f64 = 10.0;
+
+/// Time to chart coordinates, which the animated page's cursor reads back.
+#[derive(Clone, Copy, Debug)]
+pub struct TimeAxis {
+    /// Time at the left end of the axis.
+    pub t0: f64,
+    /// Pixels per time unit.
+    pub scale: f64,
+    /// The chart x of `t0`.
+    pub left: f64,
+}
+
+impl TimeAxis {
+    /// The chart x of time `t`.
+    pub fn x(&self, t: f64) -> f64 {
+        self.left + (t - self.t0) * self.scale
+    }
+}
+
+/// The chart as an SVG document.
+pub fn gantt(m: &Model) -> String {
+    gantt_svg(m, WIDTH, false).0.to_string()
+}
+
+/// The chart `width` pixels wide and its time axis; with a cursor (a line `#cursor`) for the
+/// animated page.
+pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
+    let (t0, t1) = (m.start(), m.end.max(m.start() + 1e-9));
+    let axis = TimeAxis {
+        t0,
+        scale: (width - LEFT - RIGHT) / (t1 - t0),
+        left: LEFT,
+    };
+    let lanes_bottom = HEADER + LANE * m.robots.len() as f64;
+    let kinds: Vec<_> = KINDS
+        .iter()
+        .filter(|k| {
+            m.robots
+                .iter()
+                .any(|r| r.bars.iter().any(|b| b.kind == k.0))
+        })
+        .collect();
+    let legend_rows = 1 + (kinds.len() + 2) / 5;
+    let height = lanes_bottom + AXIS + LEGEND_ROW * legend_rows as f64 + 8.0;
+    let mut doc = Document::new()
+        .set("viewBox", (0.0, 0.0, width, height))
+        .set("width", width)
+        .set("height", height)
+        .set("font-family", "sans-serif")
+        .add(
+            Rectangle::new()
+                .set("width", "100%")
+                .set("height", "100%")
+                .set("fill", "white"),
+        )
+        .add(
+            text(
+                width / 2.0,
+                24.0,
+                &format!("{}: schedule", m.title),
+                18.0,
+                "#212121",
+            )
+            .set("text-anchor", "middle")
+            .set("font-weight", "bold"),
+        )
+        .add(text(width / 2.0, 44.0, &m.verdict, 13.0, "#424242").set("text-anchor", "middle"));
+    // Ticks at 1, 2 or 5 times a power of ten.
+    let raw = (t1 - t0) / TICKS;
+    let p = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|f| f * p)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * p);
+    let mut t = (t0 / step).ceil() * step;
+    let mut ticks = Group::new().set("stroke", "#e0e0e0");
+    let mut tick_labels = Group::new();
+    while t <= t1 + 1e-9 * step {
+        let x = axis.x(t);
+        ticks = ticks
+            .add(line(x, HEADER, x, lanes_bottom))
+            .add(line(x, lanes_bottom, x, lanes_bottom + 5.0).set("stroke", "#424242"));
+        let label = format!("{}", (t / step).round() * step);
+        let label = if label.len() > 8 {
+            format!("{t:.3e}")
+        } else {
+            label
+        };
+        tick_labels = tick_labels.add(
+            text(x, lanes_bottom + 18.0, &label, 11.0, "#424242").set("text-anchor", "middle"),
+        );
+        t += step;
+    }
+    doc = doc
+        .add(ticks)
+        .add(tick_labels)
+        .add(line(LEFT, lanes_bottom, axis.x(t1), lanes_bottom).set("stroke", "#424242"))
+        .add(
+            text(width - RIGHT, lanes_bottom + 32.0, "time", 11.0, "#424242")
+                .set("text-anchor", "end"),
+        );
+    let mut placer = Placer::new([LEFT, 48.0, width, lanes_bottom]);
+    for (r, robot) in m.robots.iter().enumerate() {
+        let y = HEADER + LANE * r as f64 + (LANE - BAR) / 2.0;
+        doc = doc.add(
+            text(LEFT - 8.0, y + BAR * 0.75, &robot.name, 12.0, robot.colour)
+                .set("text-anchor", "end")
+                .set("font-weight", "bold"),
+        );
+        let mut lane = Group::new();
+        for bar in &robot.bars {
+            let (x0, x1) = (axis.x(bar.start), axis.x(bar.end.min(t1)));
+            let w = (x1 - x0).max(0.5);
+            lane = lane.add(
+                Rectangle::new()
+                    .set("x", x0)
+                    .set("y", y)
+                    .set("width", w)
+                    .set("height", BAR)
+                    .set("fill", kind_colour(bar.kind))
+                    .set("stroke", "white")
+                    .set("stroke-width", 0.5)
+                    .add(Title::new(format!(
+                        "{}: {} [{:.3}-{:.3}]",
+                        robot.name, bar.label, bar.start, bar.end
+                    ))),
+            );
+            placer.take([x0, y, x0 + w, y + BAR]);
+            if !bar.short.is_empty() && text_width(&bar.short, BAR_FONT) + 4.0 < w {
+                lane = lane.add(
+                    text(
+                        (x0 + x1) / 2.0,
+                        y + BAR * 0.72,
+                        &bar.short,
+                        BAR_FONT,
+                        "white",
+                    )
+                    .set("text-anchor", "middle"),
+                );
+            }
+        }
+        doc = doc.add(lane);
+    }
+    // The makespan, from the header to the axis.
+    let xm = axis.x(m.end);
+    let label = format!("makespan {:.3}", m.end);
+    doc = doc
+        .add(
+            line(xm, 52.0, xm, lanes_bottom)
+                .set("id", "makespan")
+                .set("stroke", "#212121")
+                .set("stroke-width", 1.5)
+                .set("stroke-dasharray", "5 3"),
+        )
+        .add(text(xm - 4.0, 64.0, &label, 11.0, "#212121").set("text-anchor", "end"));
+    placer.take([xm - 8.0 - text_width(&label, 11.0), 52.0, xm + 2.0, 68.0]);
+    // Each round's collision on the lanes of both its robots, numbered by round.
+    let lane_of = |name: &str| m.robots.iter().position(|r| r.name == name);
+    let marks = m
+        .rounds
+        .iter()
+        .chain(m.rounds.is_empty().then_some(()).and(m.contact.as_ref()));
+    let mut diamonds = Group::new().set("fill", "#d50000").set("stroke", "white");
+    let mut numbers = Vec::new();
+    for mark in marks {
+        let x = axis.x(mark.time);
+        for lane in mark.bodies.iter().filter_map(|b| lane_of(b)) {
+            let y = HEADER + LANE * lane as f64 + LANE / 2.0;
+            diamonds = diamonds.add(Polygon::new().set(
+                "points",
+                format!(
+                    "{:.2},{:.2} {:.2},{:.2} {:.2},{:.2} {:.2},{:.2}",
+                    x,
+                    y - 7.0,
+                    x + 5.0,
+                    y,
+                    x,
+                    y + 7.0,
+                    x - 5.0,
+                    y
+                ),
+            ));
+            placer.take([x - 5.0, y - 7.0, x + 5.0, y + 7.0]);
+            numbers.push((x, y, mark.round));
+        }
+    }
+    doc = doc.add(diamonds);
+    // A number sits in the gap above its lane, at its mark or as near beside it as is free.
+    for (x, y, round) in numbers {
+        let label = round.map_or("collision".to_owned(), |r| r.to_string());
+        let w = text_width(&label, 10.0);
+        let base = y - BAR / 2.0 - 3.0;
+        let spot = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0]
+            .into_iter()
+            .map(|k| x - w / 2.0 + k * (w + 3.0))
+            .find(|&x0| placer.free(&[x0 - 1.0, base - 9.0, x0 + w + 1.0, base + 1.0]));
+        if let Some(x0) = spot {
+            placer.take([x0 - 1.0, base - 9.0, x0 + w + 1.0, base + 1.0]);
+            doc = doc.add(
+                text(x0, base, &label, 10.0, "#d50000")
+                    .set("font-weight", "bold")
+                    .set("paint-order", "stroke")
+                    .set("stroke", "white")
+                    .set("stroke-width", 3),
+            );
+        }
+    }
+    if cursor {
+        doc = doc.add(
+            line(LEFT, HEADER - 4.0, LEFT, lanes_bottom + 4.0)
+                .set("id", "cursor")
+                .set("stroke", "#d50000")
+                .set("stroke-width", 2),
+        );
+    }
+    // Legend: the kinds present, the collision marks and the makespan.
+    let mut x = LEFT;
+    let mut y = lanes_bottom + AXIS + LEGEND_ROW - 4.0;
+    let mut n = 0;
+    for k in kinds {
+        doc = doc
+            .add(
+                Rectangle::new()
+                    .set("x", x)
+                    .set("y", y - 10.0)
+                    .set("width", 16)
+                    .set("height", 10)
+                    .set("fill", k.1),
+            )
+            .add(text(x + 20.0, y, k.2, 11.0, "#212121"));
+        n += 1;
+        x += (width - LEFT - RIGHT) / 5.0;
+        if n % 5 == 0 {
+            x = LEFT;
+            y += LEGEND_ROW;
+        }
+    }
+    if !m.rounds.is_empty() || m.contact.is_some() {
+        let what = if m.rounds.is_empty() {
+            "the collision"
+        } else {
+            "n: collision of round n (both robots)"
+        };
+        doc = doc
+            .add(
+                Polygon::new()
+                    .set(
+                        "points",
+                        format!(
+                            "{x},{} {},{} {x},{} {},{}",
+                            y - 12.0,
+                            x + 5.0,
+                            y - 5.0,
+                            y + 2.0,
+                            x - 5.0,
+                            y - 5.0
+                        ),
+                    )
+                    .set("fill", "#d50000")
+                    .set("transform", "translate(6 0)"),
+            )
+            .add(text(x + 20.0, y, what, 11.0, "#212121"));
+    }
+    (doc, axis)
+}

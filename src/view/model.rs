@@ -1,0 +1,471 @@
+//! What every picture draws, gathered from a result as its JSON carries it ([`ResultJson`],
+//! [`CheckReport`]) and from the scene of its trajectories: never from the solver's internals.
+
+use crate::cell::Cell;
+use crate::collision::{CheckReport, Scene};
+use crate::geometry::{closest_features, Posed, WalkTolerances};
+use crate::motion::{Motion, Pose};
+use crate::wcp::remedy_json::{ChangeJson, LegJson, PieceJson};
+use crate::wcp::report::ResultJson;
+use serde::Serialize;
+
+/// Robot colours, distinct on white and for the common colour-vision deficiencies first
+/// (Okabe-Ito), then more.
+pub const COLOURS: [&str; 12] = [
+    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#8C564B",
+    "#7F7F7F", "#BCBD22", "#17BECF", "#9467BD",
+];
+
+/// A cell or scene with its schedule, ready to draw.
+#[derive(Clone, Debug, Serialize)]
+pub struct Model {
+    /// The cell's or scene's name (its file name without `.json`).
+    pub title: String,
+    /// One line under the title: makespan and verdict.
+    pub verdict: String,
+    /// The end of the time axis: the makespan, or the scene's last sample.
+    pub end: f64,
+    /// The safety margin δ.
+    pub delta: f64,
+    /// The robots, in the cell's order.
+    pub robots: Vec<RobotView>,
+    /// The fixed obstacles, in world coordinates.
+    pub obstacles: Vec<Vec<[f64; 2]>>,
+    /// The tasks (none for a scene).
+    pub tasks: Vec<TaskView>,
+    /// The collision of each feedback round, in round order (solve only).
+    pub rounds: Vec<Mark>,
+    /// The first collision of the schedule or scene drawn, if any.
+    pub contact: Option<Mark>,
+    /// End of the prefix certified collision-free (check only).
+    pub safe_until: Option<f64>,
+}
+
+/// One robot: shape, trajectory and what it does when.
+#[derive(Clone, Debug, Serialize)]
+pub struct RobotView {
+    /// Its name.
+    pub name: String,
+    /// Its colour in every picture.
+    pub colour: &'static str,
+    /// Its shape in its own frame (G at the origin).
+    pub shape: Vec<[f64; 2]>,
+    /// Its samples `[t, x, y, θ]`: the checker interpolates linearly between them.
+    pub samples: Vec<[f64; 4]>,
+    /// Its home pose `[x, y, θ]` (cells only).
+    pub home: Option<[f64; 3]>,
+    /// Indices into [`Model::tasks`] in visiting order.
+    pub order: Vec<usize>,
+    /// Its activities, in time order.
+    pub bars: Vec<Bar>,
+}
+
+/// One activity of a robot.
+#[derive(Clone, Debug, Serialize)]
+pub struct Bar {
+    /// `move`, `task`, `wait`, `pause`, `park`, `slow`, `detour`, `aside` or `still`.
+    pub kind: &'static str,
+    /// What it is in words, e.g. `task weld-3` or `move home -> weld-2`.
+    pub label: String,
+    /// The task's name for a task, else empty: what a bar shows when it fits.
+    pub short: String,
+    /// Start time.
+    pub start: f64,
+    /// End time.
+    pub end: f64,
+}
+
+/// A task pose.
+#[derive(Clone, Debug, Serialize)]
+pub struct TaskView {
+    /// Its name.
+    pub name: String,
+    /// `[x, y, θ]`.
+    pub pose: [f64; 3],
+}
+
+/// A collision: where and when, between whom.
+#[derive(Clone, Debug, Serialize)]
+pub struct Mark {
+    /// The feedback round (from 1) whose schedule collided here; none for the drawn schedule.
+    pub round: Option<usize>,
+    /// Time of the contact.
+    pub time: f64,
+    /// The two bodies, robot first.
+    pub bodies: [String; 2],
+    /// A point between the two bodies at that time.
+    pub point: [f64; 2],
+}
+
+/// Every activity kind with its colour and its legend entry, in legend order.
+pub const KINDS: [(&str, &str, &str); 9] = [
+    ("move", "#90a4ae", "move"),
+    ("task", "#1565c0", "task"),
+    ("wait", "#ffb300", "wait at a node"),
+    ("pause", "#ef6c00", "pause on a move"),
+    ("slow", "#8e24aa", "slowed move"),
+    ("detour", "#00897b", "detour"),
+    ("aside", "#6d4c41", "move to step aside"),
+    ("park", "#d81b60", "parked aside"),
+    ("still", "#e0e0e0", "standing still"),
+];
+
+/// The colour of an activity kind.
+pub fn kind_colour(kind: &str) -> &'static str {
+    KINDS
+        .iter()
+        .find(|k| k.0 == kind)
+        .map_or("#9e9e9e", |k| k.1)
+}
+
+fn robots_of(scene: &Scene) -> Vec<RobotView> {
+    scene
+        .bodies
+        .iter()
+        .filter(|b| b.is_robot())
+        .enumerate()
+        .map(|(r, b)| RobotView {
+            name: b.name.clone(),
+            colour: COLOURS[r % COLOURS.len()],
+            shape: b.shape.vertices().iter().map(|v| [v.x, v.y]).collect(),
+            samples: match &b.motion {
+                Motion::Sampled(tr) => tr
+                    .samples()
+                    .iter()
+                    .map(|s| [s.t, s.pos.x, s.pos.y, s.theta])
+                    .collect(),
+                Motion::Fixed(p) => vec![[0.0, p.pos.x, p.pos.y, p.theta]],
+            },
+            home: None,
+            order: Vec::new(),
+            bars: Vec::new(),
+        })
+        .collect()
+}
+
+fn obstacles_of(scene: &Scene) -> Vec<Vec<[f64; 2]>> {
+    scene
+        .bodies
+        .iter()
+        .filter_map(|b| match b.motion {
+            Motion::Fixed(p) => Some(world(&b.shape, p)),
+            Motion::Sampled(_) => None,
+        })
+        .collect()
+}
+
+fn world(shape: &crate::geometry::ConvexPolygon, p: Pose) -> Vec<[f64; 2]> {
+    let placed = Posed::new(shape, p.pos.x, p.pos.y, p.theta);
+    (0..placed.len())
+        .map(|i| {
+            let v = placed.vertex(i);
+            [v.x, v.y]
+        })
+        .collect()
+}
+
+fn file_title(path: &std::path::Path) -> String {
+    path.file_stem().map_or_else(
+        || path.display().to_string(),
+        |s| s.to_string_lossy().into(),
+    )
+}
+
+impl Model {
+    /// The model of `solve` or `evaluate`: the cell, the scene of the final schedule
+    /// (`Schedule::scene`, as `--export-scene` writes it) and the result document.
+    pub fn of_result(cell: &Cell, scene: &Scene, result: &ResultJson) -> Model {
+        let mut robots = robots_of(scene);
+        let task_index = |name: &str| cell.tasks.iter().position(|t| t.name == name);
+        let changes: Vec<&ChangeJson> = result
+            .feedback
+            .iter()
+            .filter_map(|r| r.change.as_ref())
+            .collect();
+        for (r, robot) in robots.iter_mut().enumerate() {
+            let home = cell.robots[r].home;
+            robot.home = Some([home.pos.x, home.pos.y, home.theta]);
+            if let Some((_, tasks)) = result.sequences.get(r) {
+                robot.order = tasks.iter().filter_map(|t| task_index(t)).collect();
+            }
+            let Some((_, segments)) = result.schedule.get(r) else {
+                continue;
+            };
+            let place = |n: &str| {
+                if n == robot.name {
+                    "home".to_owned()
+                } else {
+                    n.to_owned()
+                }
+            };
+            for s in segments {
+                let on = match s.to {
+                    Some(to) if s.at == robot.name && to == robot.name => {
+                        "excursion from home".to_owned()
+                    }
+                    Some(to) => format!("move {} -> {}", place(s.at), place(to)),
+                    None => String::new(),
+                };
+                let (kind, label, short) = match s.activity {
+                    "task" => ("task", format!("task {}", s.at), s.at.to_owned()),
+                    "wait" => ("wait", format!("wait at {}", place(s.at)), String::new()),
+                    "pause" => ("pause", format!("pause on {on}"), String::new()),
+                    "park" => ("park", format!("parked aside on {on}"), String::new()),
+                    _ => (
+                        move_kind(&robot.name, &on, &result.legs, &changes),
+                        on,
+                        String::new(),
+                    ),
+                };
+                robot.bars.push(Bar {
+                    kind,
+                    label,
+                    short,
+                    start: s.start,
+                    end: s.end,
+                });
+            }
+        }
+        let mark = |round, c: &crate::wcp::report::CollisionJson| Mark {
+            round,
+            time: c.time,
+            bodies: c.bodies.clone(),
+            point: c.point,
+        };
+        let verdict = format!(
+            "makespan {:.3}, {}{}",
+            result.makespan,
+            match (&result.first_collision, result.collision_free) {
+                (Some(c), _) => format!(
+                    "COLLISION between {} and {} at t = {:.3}",
+                    c.bodies[0], c.bodies[1], c.time
+                ),
+                (None, true) => "collision-free (certified)".to_owned(),
+                (None, false) => "NOT certified".to_owned(),
+            },
+            match result.feedback.len() {
+                0 => String::new(),
+                1 => ", 1 round".to_owned(),
+                n => format!(", {n} rounds"),
+            }
+        );
+        Model {
+            title: file_title(&cell.file),
+            verdict,
+            end: result.makespan,
+            delta: cell.delta,
+            robots,
+            obstacles: obstacles_of(scene),
+            tasks: cell
+                .tasks
+                .iter()
+                .map(|t| TaskView {
+                    name: t.name.clone(),
+                    pose: [t.at.pos.x, t.at.pos.y, t.at.theta],
+                })
+                .collect(),
+            rounds: result
+                .feedback
+                .iter()
+                .filter_map(|r| Some(mark(Some(r.iteration), r.collision.as_ref()?)))
+                .collect(),
+            contact: result.first_collision.as_ref().map(|c| mark(None, c)),
+            safe_until: None,
+        }
+    }
+
+    /// The model of `check`: the scene and its report.
+    pub fn of_check(file: &std::path::Path, scene: &Scene, report: &CheckReport) -> Model {
+        let mut robots = robots_of(scene);
+        for robot in &mut robots {
+            robot.bars = still_and_moving(&robot.samples);
+        }
+        let contact = report.first_contact.as_ref().map(|c| {
+            let body = |name: &str| scene.bodies.iter().find(|b| b.name == name);
+            let point = match (body(&c.bodies[0]), body(&c.bodies[1])) {
+                (Some(a), Some(b)) => {
+                    fn posed(b: &crate::collision::Body, t: f64) -> Posed<'_> {
+                        let p = b.motion.pose_at(t);
+                        Posed::new(&b.shape, p.pos.x, p.pos.y, p.theta)
+                    }
+                    let d = closest_features(
+                        &posed(a, c.time),
+                        &posed(b, c.time),
+                        None,
+                        &WalkTolerances::default(),
+                    );
+                    let m = (d.point_a + d.point_b) / 2.0;
+                    [m.x, m.y]
+                }
+                _ => [0.0, 0.0],
+            };
+            Mark {
+                round: None,
+                time: c.time,
+                bodies: c.bodies.clone(),
+                point,
+            }
+        });
+        let verdict = match (&report.first_contact, report.certified) {
+            (Some(c), _) => format!(
+                "COLLISION between {} and {} at t = {:.6}; collision-free until t = {:.6}",
+                c.bodies[0], c.bodies[1], c.time, report.safe_until
+            ),
+            (None, true) => format!(
+                "collision-free over [{}, {}] (certified)",
+                report.horizon[0], report.horizon[1]
+            ),
+            (None, false) => format!(
+                "no collision found; NOT certified after t = {:.6}",
+                report.safe_until
+            ),
+        };
+        Model {
+            title: file_title(std::path::Path::new(file)),
+            verdict,
+            end: report.horizon[1],
+            delta: report.delta,
+            robots,
+            obstacles: obstacles_of(scene),
+            tasks: Vec::new(),
+            rounds: Vec::new(),
+            contact,
+            safe_until: Some(report.safe_until),
+        }
+    }
+
+    /// Start of the time axis: 0, or a scene's first sample when earlier.
+    pub fn start(&self) -> f64 {
+        self.robots
+            .iter()
+            .filter_map(|r| r.samples.first())
+            .map(|s| s[0])
+            .fold(0.0, f64::min)
+    }
+}
+
+/// The pose of a robot at `t` exactly as the checker interpolates: linear in x, y and θ
+/// between samples, the first pose before them and the last after them.
+pub fn pose_at(samples: &[[f64; 4]], t: f64) -> [f64; 3] {
+    let k = samples.partition_point(|s| s[0] <= t);
+    let (p, q, u) = if k == 0 {
+        (&samples[0], &samples[0], 0.0)
+    } else if k == samples.len() {
+        (&samples[k - 1], &samples[k - 1], 0.0)
+    } else {
+        let (p, q) = (&samples[k - 1], &samples[k]);
+        (p, q, (t - p[0]) / (q[0] - p[0]))
+    };
+    [
+        p[1] + (q[1] - p[1]) * u,
+        p[2] + (q[2] - p[2]) * u,
+        p[3] + (q[3] - p[3]) * u,
+    ]
+}
+
+/// A scene's robot has no activities, only samples: its spans of motion and of rest.
+fn still_and_moving(samples: &[[f64; 4]]) -> Vec<Bar> {
+    let mut bars: Vec<Bar> = Vec::new();
+    for w in samples.windows(2) {
+        let kind = if w[0][1..] == w[1][1..] {
+            "still"
+        } else {
+            "move"
+        };
+        match bars.last_mut() {
+            Some(b) if b.kind == kind => b.end = w[1][0],
+            _ => bars.push(Bar {
+                kind,
+                label: if kind == "move" { "moving" } else { "still" }.to_owned(),
+                short: String::new(),
+                start: w[0][0],
+                end: w[1][0],
+            }),
+        }
+    }
+    bars
+}
+
+/// What a move is: planned, or changed by a remedy. The rounds' changes say which remedy
+/// touched it (solve); without them (evaluate) the changed leg's pieces tell.
+fn move_kind(robot: &str, on: &str, legs: &[LegJson], changes: &[&ChangeJson]) -> &'static str {
+    let Some(leg) = legs.iter().find(|l| l.robot == robot && l.on == on) else {
+        return "move";
+    };
+    let touched = |kind: fn(&ChangeJson) -> Option<(&str, &str)>| {
+        changes
+            .iter()
+            .filter_map(|c| kind(c))
+            .any(|(r, o)| r == robot && o == on)
+    };
+    if touched(|c| match c {
+        ChangeJson::Detour(d) => Some((&d.robot, &d.on)),
+        _ => None,
+    }) {
+        return "detour";
+    }
+    let slowed = leg.pieces.iter().any(|p| match p {
+        PieceJson::Go { go } => go.scale > 1.0,
+        PieceJson::Hold { .. } => false,
+    });
+    if slowed {
+        return "slow";
+    }
+    let holds: Vec<&str> = leg
+        .pieces
+        .iter()
+        .filter_map(|p| match p {
+            PieceJson::Hold { reason, .. } => Some(*reason),
+            PieceJson::Go { .. } => None,
+        })
+        .collect();
+    if holds.contains(&"park") {
+        "aside"
+    } else if holds.is_empty() {
+        "detour"
+    } else {
+        "move"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn poses_interpolate_linearly_and_hold_outside_the_samples() {
+        let s = [[1.0, 0.0, 0.0, 0.0], [3.0, 2.0, 4.0, 1.0]];
+        assert_eq!(pose_at(&s, 0.0), [0.0, 0.0, 0.0]);
+        assert_eq!(pose_at(&s, 2.0), [1.0, 2.0, 0.5]);
+        assert_eq!(pose_at(&s, 9.0), [2.0, 4.0, 1.0]);
+    }
+
+    /// Bit for bit the checker's interpolation, at sample times, between them and outside.
+    #[test]
+    fn poses_are_the_checkers() {
+        use crate::geometry::Vec2;
+        use crate::motion::{Sample, Trajectory};
+        let raw = [
+            [0.1, 1.0, -2.0, 0.3],
+            [0.7, 1.5, 2.0, -3.0],
+            [2.9, -4.0, 0.25, 6.0],
+        ];
+        let tr = Trajectory::new(
+            raw.iter()
+                .map(|s| Sample {
+                    t: s[0],
+                    pos: Vec2::new(s[1], s[2]),
+                    theta: s[3],
+                    vel: Vec2::zeros(),
+                    omega: 0.0,
+                })
+                .collect(),
+        )
+        .unwrap();
+        for k in 0..=70 {
+            let t = -0.3 + 0.05 * k as f64;
+            let p = tr.pose_at(t);
+            assert_eq!(pose_at(&raw, t), [p.pos.x, p.pos.y, p.theta], "t = {t}");
+        }
+    }
+}

@@ -1,0 +1,509 @@
+//! `--svg`: the cell and its schedule in the manner of the paper's Figure 12, with a title,
+//! a legend, the visiting order and collision rings set apart.
+//!
+//! Obstacles in grey, tasks as crosses labelled with their place in their robot's route,
+//! homes as squares, each robot's path in its own colour with arrowheads along it and its
+//! shape at home and at each of its tasks, and the point of each collision fed back as a red
+//! ring numbered by round.
+
+use super::labels::{text_width, Placer, Rect};
+use super::model::{pose_at, Mark, Model, RobotView};
+use svg::node::element::{Circle, Group, Line, Polygon, Polyline, Rectangle, Text};
+use svg::Document;
+
+/// Width of the picture in pixels; the height follows the cell's aspect ratio.
+pub const WIDTH: f64 = 900.0;
+/// Margin round the drawing of the cell.
+const MARGIN: f64 = 30.0;
+/// Room above the cell for the title and the verdict.
+const HEADER: f64 = 56.0;
+/// One row of the legend.
+const LEGEND_ROW: f64 = 18.0;
+/// Robots per legend row.
+const LEGEND_PER_ROW: usize = 6;
+/// Radius of a collision ring.
+const RING: f64 = 9.0;
+/// Font sizes of the labels of tasks and homes.
+const TASK_FONT: f64 = 10.0;
+const HOME_FONT: f64 = 12.0;
+
+/// World to picture coordinates: uniform scale, y up. The browser test reads poses through
+/// it.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    /// Picture x of world x = 0.
+    pub ox: f64,
+    /// Picture y of world y = 0.
+    pub oy: f64,
+    /// Pixels per length unit.
+    pub scale: f64,
+    /// Height of the cell's drawing area, header included.
+    pub height: f64,
+}
+
+impl Frame {
+    /// The frame of the model's picture.
+    pub fn of(m: &Model) -> Frame {
+        let mut points: Vec<[f64; 2]> = m.obstacles.iter().flatten().copied().collect();
+        for robot in &m.robots {
+            let r = robot
+                .shape
+                .iter()
+                .map(|v| v[0].hypot(v[1]))
+                .fold(0.0, f64::max);
+            let home = robot.home.map(|h| [0.0, h[0], h[1], 0.0]);
+            for s in robot.samples.iter().chain(home.iter()) {
+                points.extend([[s[1] - r, s[2] - r], [s[1] + r, s[2] + r]]);
+            }
+        }
+        points.extend(m.tasks.iter().map(|t| [t.pose[0], t.pose[1]]));
+        let (mut min, mut max) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &points {
+            for i in 0..2 {
+                min[i] = min[i].min(p[i]);
+                max[i] = max[i].max(p[i]);
+            }
+        }
+        if !min[0].is_finite() {
+            (min, max) = ([0.0; 2], [1.0; 2]);
+        }
+        let size = [(max[0] - min[0]).max(1e-9), (max[1] - min[1]).max(1e-9)];
+        let scale = (WIDTH - 2.0 * MARGIN) / size[0];
+        let plot = (size[1] * scale + 2.0 * MARGIN).clamp(200.0, 4.0 * WIDTH);
+        let scale = scale.min((plot - 2.0 * MARGIN) / size[1]);
+        Frame {
+            ox: MARGIN - min[0] * scale,
+            oy: HEADER + MARGIN + max[1] * scale,
+            scale,
+            height: HEADER + plot,
+        }
+    }
+
+    /// Picture coordinates of a world point.
+    pub fn xy(&self, x: f64, y: f64) -> (f64, f64) {
+        (self.ox + x * self.scale, self.oy - y * self.scale)
+    }
+
+    fn point(&self, p: [f64; 2]) -> String {
+        let (x, y) = self.xy(p[0], p[1]);
+        format!("{x:.2},{y:.2}")
+    }
+
+    fn polygon(&self, vertices: impl Iterator<Item = [f64; 2]>) -> Polygon {
+        let points: Vec<String> = vertices.map(|v| self.point(v)).collect();
+        Polygon::new().set("points", points.join(" "))
+    }
+}
+
+/// The still picture as an SVG document.
+pub fn picture(m: &Model) -> String {
+    cell_svg(m, false).to_string()
+}
+
+/// The robot's shape at a pose, in world coordinates.
+pub fn placed(robot: &RobotView, pose: [f64; 3]) -> impl Iterator<Item = [f64; 2]> + '_ {
+    let (s, c) = pose[2].sin_cos();
+    robot
+        .shape
+        .iter()
+        .map(move |v| [pose[0] + c * v[0] - s * v[1], pose[1] + s * v[0] + c * v[1]])
+}
+
+/// The cell as an SVG document: still, or as the animated page's stage (no snapshots of the
+/// robots, which the page draws moving, and no legend, which the page has beside it).
+pub fn cell_svg(m: &Model, animated: bool) -> Document {
+    let frame = Frame::of(m);
+    let legend_rows = if animated {
+        0
+    } else {
+        // Robots, symbols (which may wrap once) and the note of labels left out.
+        m.robots.len().div_ceil(LEGEND_PER_ROW) + 3
+    };
+    // Whole pixels: a page lays the picture out on them, and one unit stays one pixel.
+    let height = (frame.height + legend_rows as f64 * LEGEND_ROW + 8.0).ceil();
+    let mut doc = Document::new()
+        .set("viewBox", (0.0, 0.0, WIDTH, height))
+        .set("width", WIDTH)
+        .set("height", height)
+        .set("font-family", "sans-serif")
+        .add(
+            Rectangle::new()
+                .set("width", "100%")
+                .set("height", "100%")
+                .set("fill", "white"),
+        );
+    if !animated {
+        doc = doc
+            .add(
+                text(WIDTH / 2.0, 24.0, &m.title, 18.0, "#212121")
+                    .set("text-anchor", "middle")
+                    .set("font-weight", "bold"),
+            )
+            .add(text(WIDTH / 2.0, 44.0, &m.verdict, 13.0, "#424242").set("text-anchor", "middle"));
+    }
+    let mut placer = Placer::new([0.0, HEADER, WIDTH, frame.height]);
+    for o in &m.obstacles {
+        doc = doc.add(
+            frame
+                .polygon(o.iter().copied())
+                .set("fill", "#bdbdbd")
+                .set("stroke", "#616161"),
+        );
+    }
+    for robot in &m.robots {
+        doc = doc.add(robot_layer(m, robot, &frame, animated));
+    }
+    // Symbols first, so that labels keep clear of them.
+    // The page shows the rings itself, at their times.
+    let marks: Vec<&Mark> = if animated {
+        Vec::new()
+    } else if m.rounds.is_empty() {
+        m.contact.iter().collect()
+    } else {
+        m.rounds.iter().collect()
+    };
+    let rings = ring_places(&marks, &frame, &mut placer);
+    for robot in &m.robots {
+        if let Some(h) = robot.home {
+            let (x, y) = frame.xy(h[0], h[1]);
+            placer.take([x - 6.0, y - 6.0, x + 6.0, y + 6.0]);
+        }
+    }
+    for t in &m.tasks {
+        let (x, y) = frame.xy(t.pose[0], t.pose[1]);
+        placer.take([x - 5.0, y - 5.0, x + 5.0, y + 5.0]);
+    }
+    for robot in &m.robots {
+        if let Some(h) = robot.home {
+            let (x, y) = frame.xy(h[0], h[1]);
+            doc = add_label(
+                doc,
+                &mut placer,
+                (x, y),
+                &robot.name,
+                HOME_FONT,
+                robot.colour,
+            );
+        }
+    }
+    for (k, t) in m.tasks.iter().enumerate() {
+        let (x, y) = frame.xy(t.pose[0], t.pose[1]);
+        let cross = |dx: f64, dy: f64| line(x - dx, y - dy, x + dx, y + dy);
+        doc = doc.add(
+            Group::new()
+                .set("stroke", "#212121")
+                .set("stroke-width", 1.5)
+                .add(cross(4.0, 4.0))
+                .add(cross(4.0, -4.0)),
+        );
+        let visit = m
+            .robots
+            .iter()
+            .find_map(|r| Some((r, r.order.iter().position(|&i| i == k)?)));
+        let (label, colour) = match visit {
+            Some((r, n)) => (format!("{}. {}", n + 1, t.name), r.colour),
+            None => (t.name.clone(), "#424242"),
+        };
+        doc = add_label(doc, &mut placer, (x, y), &label, TASK_FONT, colour);
+    }
+    // Leaders under every ring, so that no leader crosses another round's number.
+    for (mark, &(cx, cy)) in marks.iter().zip(&rings) {
+        let (x, y) = frame.xy(mark.point[0], mark.point[1]);
+        if (cx - x).hypot(cy - y) > 0.5 {
+            doc = doc
+                .add(
+                    line(x, y, cx, cy)
+                        .set("stroke", "#d50000")
+                        .set("stroke-width", 0.8),
+                )
+                .add(circle(x, y, 2.0).set("fill", "#d50000"));
+        }
+    }
+    for (mark, &(cx, cy)) in marks.iter().zip(&rings) {
+        let number = mark.round.map_or("!".to_owned(), |r| r.to_string());
+        let font = if number.len() > 2 { 8.0 } else { 11.0 };
+        doc = doc
+            .add(
+                circle(cx, cy, RING)
+                    .set("fill", "white")
+                    .set("fill-opacity", 0.85)
+                    .set("stroke", "#d50000")
+                    .set("stroke-width", 2.5),
+            )
+            .add(
+                text(cx, cy + font * 0.36, &number, font, "#d50000")
+                    .set("text-anchor", "middle")
+                    .set("font-weight", "bold"),
+            );
+    }
+    if !animated {
+        doc = legend(
+            doc,
+            m,
+            frame.height + 4.0,
+            placer.left_out,
+            !marks.is_empty(),
+        );
+    }
+    doc
+}
+
+/// The path with arrowheads along it, and (still) the shape at home and at each task.
+fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> Group {
+    let colour = robot.colour;
+    let mut group = Group::new().set("stroke", colour);
+    let points: Vec<String> = robot
+        .samples
+        .iter()
+        .map(|s| frame.point([s[1], s[2]]))
+        .collect();
+    group = group.add(
+        Polyline::new()
+            .set("points", points.join(" "))
+            .set("fill", "none")
+            .set("stroke-width", 2),
+    );
+    let moving = ["move", "slow", "detour", "aside"];
+    for bar in robot.bars.iter().filter(|b| moving.contains(&b.kind)) {
+        let mid = 0.5 * (bar.start + bar.end);
+        let eps = 0.02 * (bar.end - bar.start);
+        let (a, b) = (
+            pose_at(&robot.samples, mid - eps),
+            pose_at(&robot.samples, mid + eps),
+        );
+        let (ax, ay) = frame.xy(a[0], a[1]);
+        let (bx, by) = frame.xy(b[0], b[1]);
+        let len = (bx - ax).hypot(by - ay);
+        if len < 1e-3 {
+            continue; // a turn in place
+        }
+        let (ux, uy) = ((bx - ax) / len, (by - ay) / len);
+        let (cx, cy) = ((ax + bx) / 2.0, (ay + by) / 2.0);
+        let tip = (cx + 5.0 * ux, cy + 5.0 * uy);
+        let back = |side: f64| {
+            (
+                cx - 4.0 * ux - side * 4.0 * uy,
+                cy - 4.0 * uy + side * 4.0 * ux,
+            )
+        };
+        let (l, r) = (back(1.0), back(-1.0));
+        group = group.add(
+            Polygon::new()
+                .set(
+                    "points",
+                    format!(
+                        "{:.2},{:.2} {:.2},{:.2} {:.2},{:.2}",
+                        tip.0, tip.1, l.0, l.1, r.0, r.1
+                    ),
+                )
+                .set("fill", colour)
+                .set("stroke", "none"),
+        );
+    }
+    if !animated {
+        // The shape where the robot works, like the paper's snapshots, and at home.
+        let poses = robot
+            .home
+            .into_iter()
+            .chain(robot.order.iter().map(|&k| m.tasks[k].pose));
+        for pose in poses {
+            group = group.add(
+                frame
+                    .polygon(placed(robot, pose))
+                    .set("fill", colour)
+                    .set("fill-opacity", 0.12)
+                    .set("stroke-width", 1),
+            );
+        }
+    }
+    if let Some(h) = robot.home {
+        let (x, y) = frame.xy(h[0], h[1]);
+        group = group.add(
+            Rectangle::new()
+                .set("x", x - 5.0)
+                .set("y", y - 5.0)
+                .set("width", 10)
+                .set("height", 10)
+                .set("fill", colour),
+        );
+    }
+    group
+}
+
+/// Where each ring goes: on its point when free, else on rings round it, away from the
+/// rings already placed (rounds often collide at nearly one place).
+fn ring_places(marks: &[&Mark], frame: &Frame, placer: &mut Placer) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for mark in marks {
+        let (x, y) = frame.xy(mark.point[0], mark.point[1]);
+        let boxed = |cx: f64, cy: f64| -> Rect {
+            let r = RING + 2.0;
+            [cx - r, cy - r, cx + r, cy + r]
+        };
+        let spots = std::iter::once((x, y)).chain((1..=4).flat_map(|ring| {
+            let d = ring as f64 * (2.0 * RING + 4.0);
+            let n = 6 * ring;
+            (0..n).map(move |k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64 - std::f64::consts::FRAC_PI_4;
+                (x + d * a.cos(), y - d * a.sin())
+            })
+        }));
+        let mut chosen = (x, y);
+        for (cx, cy) in spots {
+            if placer.free(&boxed(cx, cy)) {
+                chosen = (cx, cy);
+                break;
+            }
+        }
+        placer.take(boxed(chosen.0, chosen.1));
+        out.push(chosen);
+    }
+    out
+}
+
+fn add_label(
+    doc: Document,
+    placer: &mut Placer,
+    (x, y): (f64, f64),
+    label: &str,
+    size: f64,
+    colour: &str,
+) -> Document {
+    let width = text_width(label, size);
+    let Some(p) = placer.place(x, y, width, size) else {
+        return doc;
+    };
+    let mut doc = doc;
+    if p.led {
+        // To the nearer end of the label, at its middle height.
+        let lx = if p.x >= x { p.x } else { p.x + width };
+        doc = doc.add(
+            line(x, y, lx, p.y - 0.35 * size)
+                .set("stroke", colour)
+                .set("stroke-width", 0.6),
+        );
+    }
+    doc.add(text(p.x, p.y, label, size, colour).set("class", "label"))
+}
+
+fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) -> Document {
+    let mut y = top + LEGEND_ROW - 4.0;
+    for row in m.robots.chunks(LEGEND_PER_ROW) {
+        let mut x = MARGIN;
+        for robot in row {
+            doc = doc
+                .add(
+                    line(x, y - 4.0, x + 18.0, y - 4.0)
+                        .set("stroke", robot.colour)
+                        .set("stroke-width", 3),
+                )
+                .add(text(x + 22.0, y, &robot.name, 12.0, "#212121"));
+            x += (WIDTH - 2.0 * MARGIN) / LEGEND_PER_ROW as f64;
+        }
+        y += LEGEND_ROW;
+    }
+    type Symbol = fn(f64, f64) -> Box<dyn svg::Node>;
+    let mut entries: Vec<(Symbol, &str)> = vec![(
+        |x, y| {
+            Box::new(
+                Rectangle::new()
+                    .set("x", x)
+                    .set("y", y - 10.0)
+                    .set("width", 12)
+                    .set("height", 10)
+                    .set("fill", "#bdbdbd")
+                    .set("stroke", "#616161"),
+            )
+        },
+        "obstacle",
+    )];
+    if m.robots.iter().any(|r| r.home.is_some()) {
+        entries.push((
+            |x, y| {
+                Box::new(
+                    Rectangle::new()
+                        .set("x", x + 1.0)
+                        .set("y", y - 9.0)
+                        .set("width", 9)
+                        .set("height", 9)
+                        .set("fill", "#424242"),
+                )
+            },
+            "home",
+        ));
+    }
+    if !m.tasks.is_empty() {
+        entries.push((
+            |x, y| {
+                Box::new(
+                    Group::new()
+                        .set("stroke", "#212121")
+                        .set("stroke-width", 1.5)
+                        .add(line(x + 2.0, y - 9.0, x + 10.0, y - 1.0))
+                        .add(line(x + 2.0, y - 1.0, x + 10.0, y - 9.0)),
+                )
+            },
+            "n. task: the robot's n-th task (in its colour); arrows: direction of travel",
+        ));
+    }
+    if rings {
+        entries.push((
+            |x, y| {
+                Box::new(
+                    circle(x + 6.0, y - 5.0, 6.0)
+                        .set("fill", "none")
+                        .set("stroke", "#d50000")
+                        .set("stroke-width", 2),
+                )
+            },
+            if m.rounds.is_empty() {
+                "the collision"
+            } else {
+                "n: collision of round n"
+            },
+        ));
+    }
+    let mut x = MARGIN;
+    for (symbol, what) in entries {
+        if x + 18.0 + text_width(what, 12.0) > WIDTH - MARGIN {
+            x = MARGIN;
+            y += LEGEND_ROW;
+        }
+        doc = doc
+            .add(symbol(x, y))
+            .add(text(x + 18.0, y, what, 12.0, "#212121"));
+        x += 18.0 + text_width(what, 12.0) + 14.0;
+    }
+    if left_out > 0 {
+        y += LEGEND_ROW;
+        doc = doc.add(text(
+            MARGIN,
+            y,
+            &format!("{left_out} labels left out where they would overprint"),
+            11.0,
+            "#616161",
+        ));
+    }
+    doc
+}
+
+fn circle(x: f64, y: f64, r: f64) -> Circle {
+    Circle::new().set("cx", x).set("cy", y).set("r", r)
+}
+
+pub(super) fn line(x1: f64, y1: f64, x2: f64, y2: f64) -> Line {
+    Line::new()
+        .set("x1", x1)
+        .set("y1", y1)
+        .set("x2", x2)
+        .set("y2", y2)
+}
+
+pub(super) fn text(x: f64, y: f64, content: &str, size: f64, colour: &str) -> Text {
+    Text::new(content)
+        .set("x", x)
+        .set("y", y)
+        .set("fill", colour)
+        .set("stroke", "none")
+        .set("font-size", size)
+}

@@ -1,0 +1,368 @@
+//! The animated page (`--html`) in a real browser: headless Chromium (Debian's `chromium` and
+//! `chromium-driver`) opens the pages of `solve` and `check`, sets the time with the slider,
+//! and the robots drawn must be where the checker's interpolation of the trajectories
+//! (`Motion::pose_at`) puts them, within a pixel; play and pause must run and stop the
+//! clock, the Gantt cursor follow it, a click on a robot say what it is doing, and the console
+//! stay free of errors.
+//!
+//! Skipped, with a message, when the browser is missing, unless `WORKCELL_BROWSER_TEST` is set
+//! (`.ci/run` sets it, after installing the packages): then a missing browser fails.
+//! `WORKCELL_SCREENSHOT=docs/feedback-cell-view.png` also saves the README's screenshot.
+
+mod webdriver;
+
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Duration;
+use webdriver::{binaries, Browser};
+use workcell::cell::load_scene;
+use workcell::collision::Scene;
+use workcell::geometry::Posed;
+
+/// How far a drawn vertex may be from where the trajectory puts it, in pixels.
+const PIXEL: f64 = 1.0;
+/// The browser window: wide enough for the cell and the Gantt chart side by side.
+const WINDOW: (u32, u32) = (1820, 760);
+
+fn workcell(args: &[&str]) -> std::process::Output {
+    let out = Command::new(env!("CARGO_BIN_EXE_workcell"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.code().is_some_and(|c| c <= 1),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn temp_dir() -> PathBuf {
+    std::env::temp_dir().join(format!("workcell-browser-{}", std::process::id()))
+}
+
+fn temp(name: &str) -> PathBuf {
+    std::fs::create_dir_all(temp_dir()).unwrap();
+    temp_dir().join(name)
+}
+
+fn shipped(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cells")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn browser() -> Option<Browser> {
+    match binaries() {
+        Some((chromium, driver)) => Some(Browser::start(&chromium, &driver, WINDOW.0, WINDOW.1)),
+        None if std::env::var_os("WORKCELL_BROWSER_TEST").is_some() => panic!(
+            "WORKCELL_BROWSER_TEST is set but chromium or chromedriver is missing \
+             (apt-get install chromium chromium-driver)"
+        ),
+        None => {
+            eprintln!(
+                "SKIPPED: the browser test needs chromium and chromedriver \
+                 (apt-get install chromium chromium-driver); .ci/run installs them"
+            );
+            None
+        }
+    }
+}
+
+/// Sets the time with the slider as a user drags it; the time the page then shows.
+fn set_time(b: &Browser, t: f64) -> f64 {
+    let shown = b.run(
+        "const s = document.getElementById('slider'); s.value = arguments[0]; \
+         s.dispatchEvent(new Event('input')); return window.workcellView.time();",
+        json!([t]),
+    );
+    shown.as_f64().expect("a time")
+}
+
+fn time(b: &Browser) -> f64 {
+    b.run("return window.workcellView.time();", json!([]))
+        .as_f64()
+        .expect("a time")
+}
+
+/// The page's polygons matching `css`, as their points in the stage's pixels.
+fn polygons(b: &Browser, css: &str) -> Vec<Vec<[f64; 2]>> {
+    let v = b.run(
+        "return Array.from(document.querySelectorAll(arguments[0])).map(p => \
+         Array.from(p.points).map(q => [q.x, q.y]));",
+        json!([css]),
+    );
+    serde_json::from_value(v).expect("points")
+}
+
+/// World to stage pixels, as the page says; checked against the obstacles drawn.
+struct Frame {
+    ox: f64,
+    oy: f64,
+    scale: f64,
+}
+
+impl Frame {
+    fn read(b: &Browser) -> Frame {
+        let f = b.run(
+            "return JSON.parse(document.getElementById('model').textContent).frame;",
+            json!([]),
+        );
+        Frame {
+            ox: f["ox"].as_f64().unwrap(),
+            oy: f["oy"].as_f64().unwrap(),
+            scale: f["scale"].as_f64().unwrap(),
+        }
+    }
+
+    fn px(&self, x: f64, y: f64) -> [f64; 2] {
+        [self.ox + x * self.scale, self.oy - y * self.scale]
+    }
+}
+
+/// Vertices of every body matching `robots` (robots or obstacles) at `t`, in pixels.
+fn expected(scene: &Scene, frame: &Frame, t: f64, robots: bool) -> Vec<Vec<[f64; 2]>> {
+    scene
+        .bodies
+        .iter()
+        .filter(|body| body.is_robot() == robots)
+        .map(|body| {
+            let p = body.motion.pose_at(t);
+            let placed = Posed::new(&body.shape, p.pos.x, p.pos.y, p.theta);
+            (0..placed.len())
+                .map(|i| {
+                    let v = placed.vertex(i);
+                    frame.px(v.x, v.y)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn assert_near(drawn: &[Vec<[f64; 2]>], want: &[Vec<[f64; 2]>], what: &str) {
+    assert_eq!(drawn.len(), want.len(), "{what}: number of bodies");
+    for (k, (d, w)) in drawn.iter().zip(want).enumerate() {
+        assert_eq!(d.len(), w.len(), "{what}: body {k}'s vertices");
+        for (p, q) in d.iter().zip(w) {
+            let off = (p[0] - q[0]).hypot(p[1] - q[1]);
+            assert!(
+                off <= PIXEL,
+                "{what}: body {k} drawn at {p:?}, trajectory at {q:?}"
+            );
+        }
+    }
+}
+
+/// The robots drawn at a few times, set with the slider, against the trajectories.
+fn robots_follow_the_trajectories(b: &Browser, scene: &Scene, times: &[f64], what: &str) {
+    // One unit of the stage is one pixel of the page: no scaling between them.
+    let ctm = b.run(
+        "const m = document.getElementById('stage-svg').getScreenCTM(); return [m.a, m.b, m.c, m.d];",
+        json!([]),
+    );
+    let ctm: Vec<f64> = serde_json::from_value(ctm).unwrap();
+    assert_eq!(ctm, [1.0, 0.0, 0.0, 1.0], "{what}: stage scaled");
+    let frame = Frame::read(b);
+    // The frame is the still drawing's: the obstacles it drew are where the scene has them.
+    let obstacles = polygons(b, "#stage-svg > polygon[fill='#bdbdbd']");
+    assert_near(&obstacles, &expected(scene, &frame, 0.0, false), what);
+    let (t0, t1) = scene.horizon();
+    let mut cursor = Vec::new();
+    for &t in times {
+        let shown = set_time(b, t);
+        assert!((shown - t.clamp(t0.min(0.0), t1)).abs() <= 1e-9 * t1.abs().max(1.0));
+        let drawn = polygons(b, "#robots polygon");
+        assert_near(
+            &drawn,
+            &expected(scene, &frame, shown, true),
+            &format!("{what} at t = {shown}"),
+        );
+        let x = b.run(
+            "return +document.getElementById('cursor').getAttribute('x1');",
+            json!([]),
+        );
+        cursor.push((shown, x.as_f64().unwrap()));
+    }
+    cursor.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert!(
+        cursor
+            .windows(2)
+            .all(|w| w[0].0 == w[1].0 || w[0].1 < w[1].1),
+        "{what}: the Gantt cursor does not follow the time: {cursor:?}"
+    );
+}
+
+/// Play runs the clock, pause stops it.
+fn play_and_pause(b: &Browser) {
+    let start = set_time(b, 0.0);
+    b.click("#play");
+    std::thread::sleep(Duration::from_millis(600));
+    let running = time(b);
+    assert!(running > start, "play: the time stays at {start}");
+    assert_eq!(
+        b.run(
+            "return document.getElementById('play').textContent;",
+            json!([])
+        ),
+        "Pause"
+    );
+    b.click("#play");
+    let stopped = time(b);
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(time(b), stopped, "pause: the time runs on");
+    assert_eq!(
+        b.run("return window.workcellView.playing();", json!([])),
+        false
+    );
+}
+
+fn no_console_errors(b: &Browser, what: &str) {
+    let errors: Vec<Value> = b
+        .console()
+        .into_iter()
+        .filter(|e| e["level"] == "SEVERE")
+        .collect();
+    assert!(errors.is_empty(), "{what}: the console logged {errors:?}");
+}
+
+#[test]
+fn animated_pages_in_headless_chromium() {
+    let Some(b) = browser() else { return };
+    let (page, scene_file) = (temp("feedback.html"), temp("feedback-scene.json"));
+    let out = workcell(&[
+        "solve",
+        &shipped("feedback-cell.json"),
+        "--json",
+        "--html",
+        page.to_str().unwrap(),
+        "--export-scene",
+        scene_file.to_str().unwrap(),
+    ]);
+    let result: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let scene = load_scene(&scene_file).unwrap().scene;
+    let makespan = result["makespan"].as_f64().unwrap();
+    b.open(&format!("file://{}", page.display()));
+    let times = [
+        -1.0,
+        0.37 * makespan,
+        0.5 * makespan + 0.123,
+        0.91 * makespan,
+        makespan,
+        makespan + 5.0,
+    ];
+    robots_follow_the_trajectories(&b, &scene, &times, "solve page");
+    // At the end, the cursor sits on the makespan's line.
+    set_time(&b, makespan);
+    let xs = b.run(
+        "return [+document.getElementById('cursor').getAttribute('x1'), \
+         +document.getElementById('makespan').getAttribute('x1')];",
+        json!([]),
+    );
+    assert!(
+        (xs[0].as_f64().unwrap() - xs[1].as_f64().unwrap()).abs() < 0.5,
+        "{xs}"
+    );
+    play_and_pause(&b);
+    // A click on the first robot says what it does then, as the result's schedule has it.
+    let t = set_time(&b, 0.45 * makespan);
+    let robot = result["sequences"]
+        .as_object()
+        .unwrap()
+        .keys()
+        .next()
+        .unwrap()
+        .clone();
+    let segment = result["schedule"][&robot]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["start"].as_f64().unwrap() <= t && t < s["end"].as_f64().unwrap())
+        .expect("a segment at that time")
+        .clone();
+    b.run(
+        "document.getElementById('robot-0').dispatchEvent(new MouseEvent('click'));",
+        json!([]),
+    );
+    let info = b.run(
+        "return document.getElementById('info').textContent;",
+        json!([]),
+    );
+    let info = info.as_str().unwrap();
+    let start = format!("{:.3}", segment["start"].as_f64().unwrap());
+    assert!(
+        info.starts_with(&robot) && info.contains(&start),
+        "{info} for {segment}"
+    );
+    no_console_errors(&b, "solve page");
+    if let Some(png) = std::env::var_os("WORKCELL_SCREENSHOT") {
+        // The README's picture: the first round's collision shown, the first robot clicked.
+        b.click("#marks button");
+        b.run(
+            "document.getElementById('robot-0').dispatchEvent(new MouseEvent('click'));",
+            json!([]),
+        );
+        std::fs::write(&png, b.screenshot()).expect("the screenshot is written");
+    }
+
+    // `check`: the first contact highlighted at its time, the safe prefix on the track.
+    let scene_file = shipped("paper-fig12b.json");
+    let page = temp("fig12b.html");
+    let out = workcell(&[
+        "check",
+        &scene_file,
+        "--json",
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let contact = report["first_contact"]["time"]
+        .as_f64()
+        .expect("fig12b collides");
+    let scene = load_scene(Path::new(&scene_file)).unwrap().scene;
+    b.open(&format!("file://{}", page.display()));
+    let (t0, t1) = scene.horizon();
+    robots_follow_the_trajectories(
+        &b,
+        &scene,
+        &[t0, 0.3 * t1, contact, 0.8 * t1, t1],
+        "check page",
+    );
+    let shown = |t: f64| {
+        set_time(&b, t);
+        b.run(
+            "return document.getElementById('contact').getAttribute('visibility');",
+            json!([]),
+        )
+    };
+    assert_eq!(shown(contact), "visible");
+    let strokes = b.run(
+        "return Array.from(document.querySelectorAll('#robots polygon')).map(p => p.getAttribute('stroke'));",
+        json!([]),
+    );
+    let names: Vec<&str> = scene
+        .bodies
+        .iter()
+        .filter(|x| x.is_robot())
+        .map(|x| x.name.as_str())
+        .collect();
+    for (name, stroke) in names.iter().zip(strokes.as_array().unwrap()) {
+        let hit = report["first_contact"]["bodies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|n| n == name);
+        assert_eq!(stroke == "#d50000", hit, "{name}: {stroke}");
+    }
+    assert_eq!(shown(t0), "hidden");
+    let ticks = b.run(
+        "return document.querySelectorAll('#track .tick').length;",
+        json!([]),
+    );
+    assert_eq!(ticks, 1);
+    play_and_pause(&b);
+    no_console_errors(&b, "check page");
+    let _ = std::fs::remove_dir_all(temp_dir());
+}

@@ -1,0 +1,158 @@
+//! The pictures as files: the still picture's labels never overprint (the hall cell), the
+//! Gantt chart shows what the result says (lanes, makespan, each round's collision on both
+//! robots' lanes, the remedies' colours), and the animated page fetches nothing.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use workcell::view::{text_width, KINDS};
+
+fn workcell(args: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_workcell"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.code().is_some_and(|c| c <= 1),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap_or(Value::Null)
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("workcell-view-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn shipped(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cells")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// An attribute's value in one element's text.
+fn attr<'a>(element: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let at = element.find(&key)? + key.len();
+    element[at..].split('"').next()
+}
+
+/// Every `<text>` element: its attributes' text and its content.
+fn texts(svg: &str) -> Vec<(&str, &str)> {
+    svg.split("<text")
+        .skip(1)
+        .map(|piece| {
+            let open = piece.find('>').unwrap();
+            let close = piece.find("</text>").unwrap();
+            (&piece[..open], piece[open + 1..close].trim())
+        })
+        .collect()
+}
+
+#[test]
+fn the_hall_cells_labels_never_overprint() {
+    let svg = temp("hall.svg");
+    workcell(&[
+        "solve",
+        &shipped("hall-cell.json"),
+        "--json",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(svg).unwrap();
+    // The labels of homes and tasks, as the placer estimated them.
+    let boxes: Vec<([f64; 4], &str)> = texts(&svg)
+        .into_iter()
+        .filter(|(a, _)| attr(a, "class") == Some("label"))
+        .map(|(a, content)| {
+            let num = |name: &str| -> f64 { attr(a, name).unwrap().parse().unwrap() };
+            let (x, y, size) = (num("x"), num("y"), num("font-size"));
+            let width = text_width(content, size);
+            ([x, y - 0.8 * size, x + width, y + 0.2 * size], content)
+        })
+        .collect();
+    let tasks = boxes.iter().filter(|b| b.1.contains("task-")).count();
+    assert!(tasks >= 110, "only {tasks} task labels drawn");
+    for (i, (a, name)) in boxes.iter().enumerate() {
+        for (b, other) in &boxes[..i] {
+            let overlap = a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+            assert!(!overlap, "{name} overprints {other}");
+        }
+    }
+    // Every task label says the task's place in its robot's route.
+    assert!(boxes
+        .iter()
+        .filter(|b| b.1.contains("task-"))
+        .all(|b| b.1.split(". ").count() == 2));
+}
+
+#[test]
+fn the_gantt_chart_shows_the_result() {
+    let (gantt, html) = (temp("feedback-gantt.svg"), temp("feedback.html"));
+    let result = workcell(&[
+        "solve",
+        &shipped("feedback-cell.json"),
+        "--json",
+        "--gantt",
+        gantt.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&gantt).unwrap();
+    let all_texts: Vec<&str> = texts(&svg).into_iter().map(|t| t.1).collect();
+    let makespan = result["makespan"].as_f64().unwrap();
+    assert!(all_texts.contains(&format!("makespan {makespan:.3}").as_str()));
+    for robot in result["sequences"].as_object().unwrap().keys() {
+        assert!(all_texts.contains(&robot.as_str()), "no lane for {robot}");
+    }
+    // A bar per activity, in its kind's colour; the pause of the final schedule among them.
+    let colour = |kind: &str| KINDS.iter().find(|k| k.0 == kind).unwrap().1;
+    let bars = svg.matches(&format!("fill=\"{}\"", colour("task"))).count();
+    let tasks: usize = result["schedule"]
+        .as_object()
+        .unwrap()
+        .values()
+        .map(|s| {
+            s.as_array()
+                .unwrap()
+                .iter()
+                .filter(|a| a["activity"] == "task")
+                .count()
+        })
+        .sum();
+    assert_eq!(bars, tasks + 1, "a bar per task and the legend's swatch");
+    assert!(svg.contains(colour("pause")) && all_texts.contains(&"pause on a move"));
+    // Each round's collision: a diamond on each of its two robots' lanes, its number beside.
+    let collisions: Vec<&Value> = result["feedback"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| !r["collision"].is_null())
+        .collect();
+    assert!(!collisions.is_empty());
+    let diamonds = svg.split("<g fill=\"#d50000\"").nth(1).unwrap();
+    let diamonds = &diamonds[..diamonds.find("</g>").unwrap()];
+    assert_eq!(diamonds.matches("<polygon").count(), 2 * collisions.len());
+    let red: Vec<&str> = texts(&svg)
+        .into_iter()
+        .filter(|(a, _)| attr(a, "fill") == Some("#d50000"))
+        .map(|t| t.1)
+        .collect();
+    for r in &collisions {
+        let n = r["iteration"].to_string();
+        let numbers = red.iter().filter(|t| **t == n).count();
+        assert_eq!(numbers, 2, "round {n}: {red:?}");
+    }
+    // The page is whole: nothing to fetch, no script or style from elsewhere.
+    let page = std::fs::read_to_string(&html).unwrap();
+    let outside = page
+        .replace("http://www.w3.org/2000/svg", "")
+        .matches("http")
+        .count();
+    assert_eq!(outside, 0);
+    assert!(!page.contains("src=") && page.contains("<script>") && page.contains("<style>"));
+}
