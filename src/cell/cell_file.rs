@@ -151,6 +151,14 @@ pub struct LoadedCell {
 }
 
 /// Reads and validates the cell file at `path`.
+///
+/// ```
+/// use workcell::cell::load_cell;
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+/// let cell = load_cell(path.as_ref())?.cell;
+/// assert_eq!((cell.robots.len(), cell.tasks.len(), cell.delta), (2, 4, 0.01));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
     parse_cell(&read_file(path)?, path)
 }
@@ -161,6 +169,19 @@ pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
 /// finite; every home clear of the obstacles by δ; no task pose inside an obstacle; every task
 /// allowed to at least one robot. Whether a robot can *reach* a task is known only after
 /// planning (see `wcp::check_reachable`).
+///
+/// ```
+/// use workcell::cell::parse_cell;
+/// let text = r#"{"delta": 0.01,
+///   "robots": [{"name": "R1", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+///               "home": [0, 0, 0], "max_speed": 1, "max_accel": 0, "max_turn_rate": 1}],
+///   "tasks": [{"name": "weld", "at": [3, 0, 0], "duration": 1}]}"#;
+/// let e = parse_cell(text, "c.json".as_ref()).unwrap_err();
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("R1"), "robots[0].max_accel"));
+/// let ok = parse_cell(&text.replace(r#""max_accel": 0"#, r#""max_accel": 2"#), "c.json".as_ref())?;
+/// assert_eq!(ok.cell.tasks[0].robots, [0]); // no `robots` list: any robot
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
     let raw: RawCell = document(text, file, "cell")?;
     let delta = raw.delta.unwrap_or(DEFAULT_DELTA);

@@ -3,8 +3,8 @@
 use super::object_only::object_only;
 use super::InputError;
 use crate::collision::{Body, Scene};
-use crate::geometry::{ConvexPolygon, PolygonError, Vec2};
-use crate::motion::{Motion, Sample, Trajectory, TrajectoryError};
+use crate::geometry::{ConvexPolygon, PolygonError};
+use crate::motion::{Motion, Pose, Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -81,11 +81,31 @@ pub struct LoadedScene {
 
 /// Reads and validates the scene file at `path`. Whether f64 can check it depends on the
 /// δ finally used: see [`super::check_precision`].
+///
+/// ```
+/// use workcell::cell::load_scene;
+/// use workcell::collision::{check, CheckOptions};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/paper-fig12b.json");
+/// let loaded = load_scene(path.as_ref())?;
+/// let verdict = check(&loaded.scene, &CheckOptions::default()).verdict();
+/// assert!(verdict.contact().is_some(), "the paper's colliding example: {verdict}");
+/// let e = load_scene("no-such-file.json".as_ref()).unwrap_err();
+/// assert!(e.to_string().starts_with("no-such-file.json: cannot read the file"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
     parse_scene(&read_file(path)?, path)
 }
 
 /// Parses and validates a scene document; `file` is only used to name it in messages.
+///
+/// ```
+/// use workcell::cell::parse_scene;
+/// let text = r#"{"robots": [{"name": "A", "shape": [[0,0],[1,0],[1,1]],
+///                "trajectory": [{"t": 0, "x": 0, "y": 0}, {"t": 1, "x": "far"}]}]}"#;
+/// let e = parse_scene(text, "s.json".as_ref()).unwrap_err();
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("A"), "robots[0].trajectory[1].x"));
+/// ```
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     let raw: RawScene =
         document(text, file, "scene").map_err(|e| cell_instead(text, file).unwrap_or(e))?;
@@ -291,30 +311,9 @@ pub(super) fn polygon(
 
 /// Samples with defaults filled in: theta 0, velocities derived from the positions.
 fn trajectory(raw: &[RawSample]) -> Result<Trajectory, TrajectoryError> {
-    let mut samples: Vec<Sample> = raw
+    let samples = raw
         .iter()
-        .map(|s| Sample {
-            t: s.t,
-            pos: Vec2::new(s.x, s.y),
-            theta: s.theta.unwrap_or(0.0),
-            vel: Vec2::zeros(),
-            omega: 0.0,
-        })
+        .map(|s| Sample::at(s.t, Pose::new(s.x, s.y, s.theta.unwrap_or(0.0))))
         .collect();
-    // Validate before deriving: derivation divides by time steps.
-    Trajectory::new(samples.clone())?;
-    for (k, s) in raw.iter().enumerate() {
-        let complete = s.vx.is_some() && s.vy.is_some() && s.omega.is_some();
-        let (v, w) = if complete {
-            (Vec2::zeros(), 0.0)
-        } else {
-            Trajectory::derived_velocity(&samples, k)
-        };
-        if !(v.x.is_finite() && v.y.is_finite() && w.is_finite()) {
-            return Err(TrajectoryError::DerivedVelocityOverflow { sample: k });
-        }
-        samples[k].vel = Vec2::new(s.vx.unwrap_or(v.x), s.vy.unwrap_or(v.y));
-        samples[k].omega = s.omega.unwrap_or(w);
-    }
-    Trajectory::new(samples)
+    Trajectory::with_given_velocities(samples, |k| [raw[k].vx, raw[k].vy, raw[k].omega])
 }

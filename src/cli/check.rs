@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 use workcell::cell::{check_precision, check_time_resolution, load_scene, InputError};
-use workcell::collision::{check, validate, CheckOptions, CheckReport};
+use workcell::collision::{check, validate, CheckOptions, CheckReport, Verdict};
 
 /// Exit status when a pair spent its work budget before a proof or a witness.
 const EXIT_UNRESOLVED: u8 = 3;
@@ -60,10 +60,11 @@ pub fn run_check(
             ),
         });
     }
-    if report.budget_exhausted.is_some() {
-        return Ok(ExitCode::from(EXIT_UNRESOLVED));
-    }
-    Ok(ExitCode::from(u8::from(report.collision)))
+    Ok(ExitCode::from(match report.verdict() {
+        Verdict::Free { .. } => 0,
+        Verdict::Contact { .. } => 1,
+        Verdict::Unresolved { .. } => EXIT_UNRESOLVED,
+    }))
 }
 
 fn summary(
@@ -92,8 +93,8 @@ fn summary(
     } else {
         "certified".to_owned()
     };
-    match (&r.first_contact, &r.budget_exhausted) {
-        (None, Some(b)) => {
+    match r.verdict() {
+        Verdict::Unresolved { budget: b } => {
             line(format!(
                 "{}: UNRESOLVED: {} and {} used their work budget ({} evaluations of the distance) at t = {} with neither a proof nor a collision",
                 path.display(),
@@ -112,21 +113,21 @@ fn summary(
                 }
             ));
         }
-        (None, None) if method.proves_free() => line(format!(
+        Verdict::Free { .. } if method.proves_free() => line(format!(
             "{}: collision-free over [{}, {}] (delta {}; {proof})",
             path.display(),
             r.horizon[0],
             r.horizon[1],
             r.delta
         )),
-        (None, None) => line(format!(
+        Verdict::Free { .. } => line(format!(
             "{}: no collision found over [{}, {}] (delta {}; {proof})",
             path.display(),
             r.horizon[0],
             r.horizon[1],
             r.delta
         )),
-        (Some(c), _) => {
+        Verdict::Contact { contact: c, .. } => {
             line(format!(
                 "{}: COLLISION between {} and {} at t = {} (merged interval {}, distance {:.6e} < delta {})",
                 path.display(),

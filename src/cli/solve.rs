@@ -351,13 +351,13 @@ pub fn run_evaluate(
     };
     let opts = SolveOptions::default();
     let evaluated = wcp::evaluate(&cell, &given, &opts, sequences)?;
-    let failure = match (&evaluated.collision, evaluated.report.certified) {
-        (Some(c), _) => Some(format!(
+    let failure = match &evaluated.collision {
+        Some(c) => Some(format!(
             "the schedule collides: {}",
             wcp::describe(&cell, c)
         )),
-        (None, false) => Some(wcp::uncertified(&evaluated.report)),
-        (None, true) => None,
+        None if evaluated.collision_free => None,
+        None => Some(wcp::uncertified(&evaluated.report)),
     };
     let (sequence_names, schedule) = schedule_json(&cell, &evaluated.schedule);
     let json = ResultJson {

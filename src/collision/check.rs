@@ -25,6 +25,18 @@ pub const DEFAULT_TIME_TOL_OVER_HORIZON: f64 = 1e-6;
 pub const DEFAULT_MAX_WORK_PER_PAIR: u64 = 1_000_000;
 
 /// How to check a scene.
+///
+/// ```
+/// use workcell::collision::{CheckOptions, Method};
+/// use workcell::motion::BoundKind;
+/// // The paper's bound instead of the rigorous one, and each pair's counters.
+/// let opts = CheckOptions {
+///     method: Method::Adaptive(BoundKind::Paper),
+///     per_pair: true,
+///     ..CheckOptions::default()
+/// };
+/// assert_eq!(opts.time_tol_for((0.0, 8.0)), 8e-6); // 10⁻⁶ of the horizon by default
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct CheckOptions {
     /// δ to use instead of the scene's, in the scene's length unit.
@@ -167,6 +179,25 @@ pub struct PairStats {
 ///
 /// When [`validate`] refuses the arguments (a δ that is not a positive number, say): such a
 /// check would never end or would prove nothing. [`try_check`] returns that error instead.
+///
+/// # Examples
+///
+/// ```
+/// use workcell::collision::{check, Body, CheckOptions, Scene};
+/// use workcell::geometry::ConvexPolygon;
+/// use workcell::motion::{Pose, Trajectory};
+/// // Two robots passing 2 apart (centre to centre; 1 between their sides).
+/// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
+/// let lane = |y: f64| Trajectory::from_poses([(0.0, Pose::new(0.0, y, 0.0)), (5.0, Pose::new(5.0, y, 0.0))]);
+/// let scene = Scene::with_bodies(0.1, [
+///     Body::robot("low", square.clone(), lane(0.0)?),
+///     Body::robot("high", square, lane(2.0)?),
+/// ])?;
+/// let report = check(&scene, &CheckOptions::default());
+/// assert!(report.verdict().is_certified_free());
+/// assert_eq!((report.pairs, report.horizon), (1, [0.0, 5.0]));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     if let Err(e) = validate(scene, opts) {
         panic!("collision::check: {e}");
@@ -183,6 +214,17 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
 /// [`check`] for a scene and options not validated yet: refuses, as `workcell check` does,
 /// what [`validate`] refuses and scenes that f64 cannot check at their δ
 /// ([`crate::cell::check_precision`]). The errors name the field and no file.
+///
+/// ```
+/// use workcell::collision::{try_check, CheckOptions, Scene};
+/// let scene = Scene::new(0.01)?;
+/// let opts = CheckOptions { delta: Some(f64::NAN), ..CheckOptions::default() };
+/// let e = try_check(&scene, &opts).unwrap_err();
+/// assert_eq!(e.to_string(), "field `delta`: must be a positive number, got NaN");
+/// // An empty scene is free: there is no pair.
+/// assert!(try_check(&scene, &CheckOptions::default())?.verdict().is_certified_free());
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn try_check(scene: &Scene, opts: &CheckOptions) -> Result<CheckReport, InputError> {
     validate(scene, opts)?;
     check_precision(
@@ -198,6 +240,15 @@ pub fn try_check(scene: &Scene, opts: &CheckOptions) -> Result<CheckReport, Inpu
 /// a `sampled` step that is not positive, finer than f64 resolves the horizon's times, or
 /// so fine that the looks would exceed [`super::MAX_SAMPLED_LOOKS`] per pair. Fields are
 /// named after [`CheckOptions`] (`delta` for the scene's δ); the error names no file.
+///
+/// ```
+/// use workcell::collision::{validate, CheckOptions, Scene};
+/// let scene = Scene::new(0.01)?;
+/// let opts = CheckOptions { grazing_tol: 1.0, ..CheckOptions::default() };
+/// assert_eq!(validate(&scene, &opts).unwrap_err().field, "grazing_tol");
+/// assert!(validate(&scene, &CheckOptions::default()).is_ok());
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn validate(scene: &Scene, opts: &CheckOptions) -> Result<(), InputError> {
     let refuse = |field: &str, reason: String| {
         Err(InputError::new(

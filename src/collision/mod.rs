@@ -20,6 +20,7 @@ mod peer;
 mod sampled;
 mod scene;
 mod stats;
+mod verdict;
 
 pub use broad_phase::candidate_pairs;
 pub use check::{
@@ -32,3 +33,4 @@ pub use peer::{check_with_parry, PeerReport};
 pub use sampled::MAX_SAMPLED_LOOKS;
 pub use scene::{Body, Scene};
 pub use stats::Stats;
+pub use verdict::Verdict;

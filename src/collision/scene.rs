@@ -1,7 +1,10 @@
 //! The checker's input: bodies with their shapes and motions.
 
+use crate::cell::InputError;
 use crate::geometry::ConvexPolygon;
-use crate::motion::{Motion, Pose};
+use crate::motion::{Motion, Pose, Trajectory};
+use std::collections::HashSet;
+use std::path::Path;
 
 /// A robot or an obstacle.
 #[derive(Clone, Debug, PartialEq)]
@@ -15,12 +18,43 @@ pub struct Body {
 }
 
 impl Body {
+    /// A robot: `shape` in its own frame (whose origin G follows the trajectory and is the
+    /// centre of rotation), moving along `trajectory`.
+    ///
+    /// ```
+    /// use workcell::collision::Body;
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let path = Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0)), (2.0, Pose::new(4.0, 0.0, 1.0))])?;
+    /// let r = Body::robot("R1", ConvexPolygon::rectangle(1.0, 0.5)?, path);
+    /// assert!(r.is_robot());
+    /// assert_eq!(r.motion.pose_at(1.0).pos.x, 2.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn robot(name: impl Into<String>, shape: ConvexPolygon, trajectory: Trajectory) -> Self {
+        Body {
+            name: name.into(),
+            shape,
+            motion: Motion::Sampled(trajectory),
+        }
+    }
+
     /// A fixed obstacle given in world coordinates. Its frame is moved to its centroid so
     /// that its bounding disc (eq. 13) is tight.
-    pub fn obstacle(name: String, world_shape: &ConvexPolygon) -> Self {
+    ///
+    /// ```
+    /// use workcell::collision::Body;
+    /// use workcell::geometry::ConvexPolygon;
+    /// let wall = ConvexPolygon::from_vertices(&[[4.0, -1.0], [6.0, -1.0], [6.0, 1.0], [4.0, 1.0]])?;
+    /// let o = Body::obstacle("wall", &wall);
+    /// assert!(!o.is_robot());
+    /// assert_eq!(o.motion.pose_at(0.0).pos.x, 5.0);
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn obstacle(name: impl Into<String>, world_shape: &ConvexPolygon) -> Self {
         let c = world_shape.centroid();
         Body {
-            name,
+            name: name.into(),
             shape: world_shape.translated(&c),
             motion: Motion::Fixed(Pose { pos: c, theta: 0.0 }),
         }
@@ -42,6 +76,103 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// An empty scene of safety margin `delta` (length units of the scene); refuses a δ that
+    /// is not a positive finite number. Add bodies with [`Scene::add`].
+    ///
+    /// ```
+    /// use workcell::collision::Scene;
+    /// let scene = Scene::new(0.01)?;
+    /// assert!(scene.bodies.is_empty());
+    /// for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+    ///     let e = Scene::new(bad).unwrap_err();
+    ///     assert_eq!(e.field, "delta");
+    /// }
+    /// assert_eq!(
+    ///     Scene::new(-1.0).unwrap_err().to_string(),
+    ///     "field `delta`: must be a positive number, got -1"
+    /// );
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn new(delta: f64) -> Result<Self, InputError> {
+        if !(delta.is_finite() && delta > 0.0) {
+            return Err(InputError::new(
+                Path::new(""),
+                None,
+                "delta",
+                format!("must be a positive number, got {delta}"),
+            ));
+        }
+        Ok(Scene {
+            delta,
+            bodies: Vec::new(),
+        })
+    }
+
+    /// A scene of `delta` with these bodies: [`Scene::new`] then [`Scene::add`] for each,
+    /// with the names compared in one pass (for scenes of many bodies).
+    ///
+    /// ```
+    /// use workcell::collision::{Body, Scene};
+    /// use workcell::geometry::ConvexPolygon;
+    /// let post = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let e = Scene::with_bodies(0.01, [Body::obstacle("post", &post), Body::obstacle("post", &post)])
+    ///     .unwrap_err();
+    /// assert_eq!(e.to_string(), "body \"post\", field `bodies[1].name`: another body has the same name");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_bodies(
+        delta: f64,
+        bodies: impl IntoIterator<Item = Body>,
+    ) -> Result<Self, InputError> {
+        let mut scene = Scene::new(delta)?;
+        let mut names = HashSet::new();
+        let mut obstacles = Vec::new();
+        for (k, body) in bodies.into_iter().enumerate() {
+            check_name(&body.name, k, |name| !names.insert(name.to_owned()))?;
+            if body.is_robot() {
+                scene.bodies.push(body);
+            } else {
+                obstacles.push(body);
+            }
+        }
+        scene.bodies.append(&mut obstacles);
+        Ok(scene)
+    }
+
+    /// Adds a robot or an obstacle. Its name must be non-empty and unique in the scene
+    /// (compared with every body's: O(bodies)); robots are kept before obstacles, in the order
+    /// added. Errors name the body and its field `bodies[k].name`, `k` its index once added.
+    ///
+    /// ```
+    /// use workcell::collision::{Body, Scene};
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let at_rest = Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0))])?;
+    /// let mut scene = Scene::new(0.01)?;
+    /// scene
+    ///     .add(Body::obstacle("post", &square.translated(&[-3.0, 0.0].into())))?
+    ///     .add(Body::robot("R1", square.clone(), at_rest))?;
+    /// assert_eq!(scene.bodies[0].name, "R1"); // robots first
+    /// assert_eq!(scene.pair_count(), 1);
+    /// let e = scene.add(Body::obstacle("", &square)).unwrap_err();
+    /// assert_eq!(e.reason, "a body needs a non-empty name");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add(&mut self, body: Body) -> Result<&mut Self, InputError> {
+        let k = self.bodies.len();
+        check_name(&body.name, k, |name| {
+            self.bodies.iter().any(|b| b.name == name)
+        })?;
+        let at = if body.is_robot() {
+            self.robot_count()
+        } else {
+            k
+        };
+        self.bodies.insert(at, body);
+        Ok(self)
+    }
+
     /// Earliest and latest sample time of any robot; `(0, 0)` without robots.
     pub fn horizon(&self) -> (f64, f64) {
         let times = || self.bodies.iter().flat_map(|b| b.motion.times());
@@ -81,4 +212,18 @@ impl Scene {
         let obstacles = self.bodies.len() - robots;
         robots * robots.saturating_sub(1) / 2 + robots * obstacles
     }
+}
+
+/// Refuses an empty name, or one that `taken` says another body has; `k` is the body's index.
+fn check_name(name: &str, k: usize, taken: impl FnOnce(&str) -> bool) -> Result<(), InputError> {
+    let field = format!("bodies[{k}].name");
+    if name.is_empty() {
+        let reason = "a body needs a non-empty name";
+        return Err(InputError::new(Path::new(""), None, field, reason));
+    }
+    if taken(name) {
+        let reason = "another body has the same name";
+        return Err(InputError::new(Path::new(""), Some(name), field, reason));
+    }
+    Ok(())
 }

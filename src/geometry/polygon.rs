@@ -65,14 +65,35 @@ impl std::fmt::Display for PolygonWarning {
 
 /// A strictly convex polygon with counter-clockwise vertices, in its own frame.
 ///
-/// Invariants (established by [`ConvexPolygon::new`]): at least three vertices, all
-/// finite, every turn strictly left, total turning exactly one revolution.
-#[derive(Clone, Debug, PartialEq)]
+/// Invariants (established by [`ConvexPolygon::from_vertices`]): at least three vertices,
+/// all finite, every turn strictly left, total turning exactly one revolution.
+///
+/// ```
+/// use workcell::geometry::{ConvexPolygon, PolygonWarning};
+/// // Clockwise input is accepted and reversed; the repair stays readable on the polygon.
+/// let p = ConvexPolygon::from_vertices(&[[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]])?;
+/// assert_eq!(p.len(), 4);
+/// assert_eq!(p.warnings(), &[PolygonWarning::Reversed]);
+/// # Ok::<(), workcell::geometry::PolygonError>(())
+/// ```
+#[derive(Clone, Debug)]
 pub struct ConvexPolygon {
     vertices: Vec<Vec2>,
     normals: Vec<Vec2>,
     radius: f64,
     repair: Option<RepairShift>,
+    /// The repairs that built it from its input (not part of equality: two builds of the
+    /// same polygon are equal however their input was written).
+    warnings: Vec<PolygonWarning>,
+}
+
+impl PartialEq for ConvexPolygon {
+    fn eq(&self, other: &Self) -> bool {
+        self.vertices == other.vertices
+            && self.normals == other.normals
+            && self.radius == other.radius
+            && self.repair == other.repair
+    }
 }
 
 /// How far the removal of repeated and collinear vertices moved the boundary: the input
@@ -89,10 +110,65 @@ pub struct RepairShift {
 }
 
 impl ConvexPolygon {
-    /// Validates `points` (in order) and builds the polygon.
+    /// Validates `points` (in order) and builds the polygon, with the repairs made on the
+    /// way readable from [`ConvexPolygon::warnings`].
     ///
-    /// Repeated and collinear vertices are removed and clockwise input is reversed; each
-    /// repair is returned as a warning. Errors name the offending input vertex.
+    /// Repeated and collinear vertices are removed and clockwise input is reversed. Errors
+    /// name the offending input vertex.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, PolygonError, PolygonWarning};
+    /// let dart = ConvexPolygon::from_vertices(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, 0.5], [0.0, 2.0]]);
+    /// assert_eq!(dart.unwrap_err(), PolygonError::NotConvex { vertex: 3 });
+    /// let p = ConvexPolygon::from_vertices(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [1.0, 1.0]])?;
+    /// assert_eq!(p.len(), 3);
+    /// assert_eq!(p.warnings(), &[PolygonWarning::CollinearVertex(1)]);
+    /// # Ok::<(), PolygonError>(())
+    /// ```
+    pub fn from_vertices(points: &[[f64; 2]]) -> Result<Self, PolygonError> {
+        Self::new(points).map(|(polygon, _)| polygon)
+    }
+
+    /// A `width` × `height` rectangle centred on the origin of its frame, sides along the
+    /// axes: the usual shape of a robot's footprint.
+    ///
+    /// ```
+    /// use workcell::geometry::ConvexPolygon;
+    /// let r = ConvexPolygon::rectangle(2.0, 1.0)?;
+    /// assert_eq!(r.len(), 4);
+    /// assert!((r.radius() - 1.25f64.sqrt()).abs() < 1e-15);
+    /// assert!(ConvexPolygon::rectangle(0.0, 1.0).is_err());
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn rectangle(width: f64, height: f64) -> Result<Self, PolygonError> {
+        let (x, y) = (0.5 * width, 0.5 * height);
+        Self::from_vertices(&[[-x, -y], [x, -y], [x, y], [-x, y]])
+    }
+
+    /// The repairs [`ConvexPolygon::from_vertices`] made to its input (empty for shapes made
+    /// otherwise); the command line prints them as warnings.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, PolygonWarning};
+    /// let p = ConvexPolygon::from_vertices(&[[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])?;
+    /// assert_eq!(p.warnings(), &[PolygonWarning::RepeatedVertex(2)]);
+    /// assert_eq!(p.warnings()[0].to_string(), "vertex 2 repeats its predecessor; removed");
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn warnings(&self) -> &[PolygonWarning] {
+        &self.warnings
+    }
+
+    /// [`ConvexPolygon::from_vertices`] with the repairs also returned beside the polygon.
+    ///
+    /// ```
+    /// use workcell::geometry::ConvexPolygon;
+    /// let (p, repairs) = ConvexPolygon::new(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])?;
+    /// assert!(repairs.is_empty() && p.warnings().is_empty());
+    /// let (p, repairs) = ConvexPolygon::new(&[[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]])?;
+    /// assert_eq!(repairs, p.warnings());
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
     pub fn new(points: &[[f64; 2]]) -> Result<(Self, Vec<PolygonWarning>), PolygonError> {
         for (i, p) in points.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
@@ -201,6 +277,7 @@ impl ConvexPolygon {
         let vertices: Vec<Vec2> = pts.into_iter().map(|(_, p)| p).collect();
         let mut polygon = Self::from_ccw(vertices);
         polygon.repair = Self::shift_of(&polygon.vertices, points, &warnings);
+        polygon.warnings.clone_from(&warnings);
         Ok((polygon, warnings))
     }
 
@@ -254,6 +331,7 @@ impl ConvexPolygon {
             normals,
             radius,
             repair: None,
+            warnings: Vec::new(),
         }
     }
 
@@ -262,6 +340,7 @@ impl ConvexPolygon {
     pub fn translated(&self, offset: &Vec2) -> Self {
         Self {
             repair: self.repair,
+            warnings: self.warnings.clone(),
             ..Self::from_ccw(self.vertices.iter().map(|v| v - offset).collect())
         }
     }

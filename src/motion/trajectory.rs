@@ -26,6 +26,42 @@ pub struct Pose {
     pub theta: f64,
 }
 
+impl Pose {
+    /// The pose with G at (`x`, `y`) and rotation `theta` (radians, counter-clockwise).
+    ///
+    /// ```
+    /// use workcell::motion::Pose;
+    /// let p = Pose::new(1.0, 2.0, 0.5);
+    /// assert_eq!((p.pos.x, p.pos.y, p.theta), (1.0, 2.0, 0.5));
+    /// ```
+    pub fn new(x: f64, y: f64, theta: f64) -> Self {
+        Pose {
+            pos: Vec2::new(x, y),
+            theta,
+        }
+    }
+}
+
+impl Sample {
+    /// The sample at time `t` in `pose`, velocities zero: [`Trajectory::from_poses`] derives
+    /// them, or set `vel` and `omega` to give them.
+    ///
+    /// ```
+    /// use workcell::motion::{Pose, Sample};
+    /// let s = Sample::at(2.0, Pose::new(1.0, 0.0, 0.0));
+    /// assert_eq!((s.t, s.vel.x, s.omega), (2.0, 0.0, 0.0));
+    /// ```
+    pub fn at(t: f64, pose: Pose) -> Self {
+        Sample {
+            t,
+            pos: pose.pos,
+            theta: pose.theta,
+            vel: Vec2::zeros(),
+            omega: 0.0,
+        }
+    }
+}
+
 /// Why a list of samples is not a trajectory. `sample` is the index in the input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum TrajectoryError {
@@ -66,7 +102,76 @@ pub struct Trajectory {
 }
 
 impl Trajectory {
-    /// Validates the samples.
+    /// The trajectory through `poses` (time, pose), with the velocities the scene file
+    /// derives when it gives none ([`Trajectory::derived_velocity`]). Refuses what
+    /// [`Trajectory::new`] refuses, and a derived velocity that overflows.
+    ///
+    /// ```
+    /// use workcell::motion::{Pose, Trajectory, TrajectoryError};
+    /// let tr = Trajectory::from_poses([
+    ///     (0.0, Pose::new(0.0, 0.0, 0.0)),
+    ///     (1.0, Pose::new(2.0, 0.0, 0.0)),
+    ///     (2.0, Pose::new(6.0, 0.0, 1.0)),
+    /// ])?;
+    /// let s = tr.samples();
+    /// assert_eq!((s[0].vel.x, s[1].vel.x, s[2].vel.x), (2.0, 3.0, 4.0));
+    /// assert_eq!((s[1].omega, s[2].omega), (0.5, 1.0));
+    /// assert_eq!(tr.pose_at(0.5).pos.x, 1.0);
+    ///
+    /// let backwards = Trajectory::from_poses([(1.0, Pose::new(0.0, 0.0, 0.0)), (0.0, Pose::new(1.0, 0.0, 0.0))]);
+    /// assert!(matches!(backwards, Err(TrajectoryError::NotIncreasing { sample: 1, .. })));
+    /// # Ok::<(), TrajectoryError>(())
+    /// ```
+    pub fn from_poses(
+        poses: impl IntoIterator<Item = (f64, Pose)>,
+    ) -> Result<Self, TrajectoryError> {
+        let samples = poses.into_iter().map(|(t, p)| Sample::at(t, p)).collect();
+        Self::with_given_velocities(samples, |_| [None; 3])
+    }
+
+    /// The scene file's rule for velocities: a sample whose `given(k)` (vx, vy, omega) are
+    /// all known keeps them; any other gets the unknown ones from
+    /// [`Trajectory::derived_velocity`], which must then be finite. The velocities already
+    /// in `samples` are ignored.
+    pub(crate) fn with_given_velocities(
+        mut samples: Vec<Sample>,
+        given: impl Fn(usize) -> [Option<f64>; 3],
+    ) -> Result<Self, TrajectoryError> {
+        for s in &mut samples {
+            (s.vel, s.omega) = (Vec2::zeros(), 0.0);
+        }
+        // Validate before deriving: derivation divides by time steps.
+        Trajectory::new(samples.clone())?;
+        for k in 0..samples.len() {
+            let [vx, vy, omega] = given(k);
+            let (v, w) = if vx.is_some() && vy.is_some() && omega.is_some() {
+                (Vec2::zeros(), 0.0)
+            } else {
+                Trajectory::derived_velocity(&samples, k)
+            };
+            if !(v.x.is_finite() && v.y.is_finite() && w.is_finite()) {
+                return Err(TrajectoryError::DerivedVelocityOverflow { sample: k });
+            }
+            samples[k].vel = Vec2::new(vx.unwrap_or(v.x), vy.unwrap_or(v.y));
+            samples[k].omega = omega.unwrap_or(w);
+        }
+        Trajectory::new(samples)
+    }
+
+    /// Validates the samples, velocities as given.
+    ///
+    /// ```
+    /// use workcell::motion::{Pose, Sample, Trajectory, TrajectoryError};
+    /// let mut s = Sample::at(0.0, Pose::new(0.0, 0.0, 0.0));
+    /// s.vel.x = 1.0;
+    /// assert_eq!(Trajectory::new(vec![s])?.velocity_at(0.0).0.x, 0.0); // at rest outside
+    /// s.omega = f64::NAN;
+    /// assert_eq!(
+    ///     Trajectory::new(vec![s]).unwrap_err(),
+    ///     TrajectoryError::NotFinite { sample: 0, field: "omega" }
+    /// );
+    /// # Ok::<(), TrajectoryError>(())
+    /// ```
     pub fn new(samples: Vec<Sample>) -> Result<Self, TrajectoryError> {
         if samples.is_empty() {
             return Err(TrajectoryError::Empty);

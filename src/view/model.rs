@@ -2,7 +2,7 @@
 //! [`CheckReport`]) and from the scene of its trajectories: never from the solver's internals.
 
 use crate::cell::Cell;
-use crate::collision::{CheckReport, Scene};
+use crate::collision::{CheckReport, Scene, Verdict};
 use crate::geometry::{closest_features, Posed, WalkTolerances};
 use crate::motion::{Motion, Pose};
 use crate::wcp::remedy_json::{ChangeJson, LegJson, PieceJson};
@@ -306,16 +306,16 @@ impl Model {
                 point,
             }
         });
-        let verdict = match (&report.first_contact, report.certified) {
-            (Some(c), _) => format!(
+        let verdict = match report.verdict() {
+            Verdict::Contact { contact: c, .. } => format!(
                 "COLLISION between {} and {} at t = {:.6}; collision-free until t = {:.6}",
                 c.bodies[0], c.bodies[1], c.time, report.safe_until
             ),
-            (None, true) => format!(
+            Verdict::Free { certified: true } => format!(
                 "collision-free over [{}, {}] (certified)",
                 report.horizon[0], report.horizon[1]
             ),
-            (None, false) => format!(
+            Verdict::Free { certified: false } | Verdict::Unresolved { .. } => format!(
                 "no collision found; NOT certified after t = {:.6}",
                 report.safe_until
             ),

@@ -146,7 +146,7 @@ pub fn evaluate(
     let report = check(&schedule.scene(cell), &opts.check);
     times.checking = clock.elapsed();
     let collision = schedule.collision(cell, &report);
-    let collision_free = collision.is_none() && report.certified;
+    let collision_free = collision.is_none() && report.verdict().is_certified_free();
     Ok(Evaluated {
         routes: routes.clone(),
         legs,

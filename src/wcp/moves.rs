@@ -9,7 +9,7 @@
 
 use super::sequencer::{BoundLimits, Bounds};
 use crate::cell::{Cell, CellRobot};
-use crate::collision::{check, Body, CheckOptions, Scene};
+use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::{Motion, Pose, Sample, Trajectory};
 use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
@@ -212,13 +212,13 @@ pub(crate) fn certify(
         },
         &CheckOptions::default(),
     );
-    match report.first_contact {
-        Some(c) => Err(MoveFailure::Collides {
+    match report.verdict() {
+        Verdict::Contact { contact: c, .. } => Err(MoveFailure::Collides {
             time: c.time,
             obstacle: c.bodies[1].clone(),
         }),
-        None if !report.certified => Err(MoveFailure::NotCertified),
-        None => Ok(()),
+        verdict if verdict.is_certified_free() => Ok(()),
+        _ => Err(MoveFailure::NotCertified),
     }
 }
 

@@ -8,7 +8,7 @@
 //! the next round's business.
 
 use crate::cell::Cell;
-use crate::collision::{check, Body, CheckOptions, Scene};
+use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::motion::{Motion, Sample, Trajectory};
 use crate::wcp::schedule::RobotSchedule;
 
@@ -46,10 +46,10 @@ pub(super) fn clears(
         },
         opts,
     );
-    match report.first_contact {
+    match report.verdict() {
         // The cut trajectories reach one sample beyond t1: a contact there is not ours.
-        Some(c) => c.time > t1,
-        None => report.certified,
+        Verdict::Contact { contact, .. } => contact.time > t1,
+        verdict => verdict.is_certified_free(),
     }
 }
 

@@ -6,7 +6,7 @@
 use super::describe;
 use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
 use crate::cell::{Cell, InputError};
-use crate::collision::check;
+use crate::collision::{check, Verdict};
 use crate::wcp::moves::MoveStore;
 use crate::wcp::schedule::{Activity, Delay, Segment};
 use crate::wcp::sequence::sequence_with;
@@ -62,13 +62,12 @@ pub fn solve(
                 collision: None,
                 remedy: None,
             });
-            let failure = if report.collision {
-                Some(
+            let failure = match report.verdict() {
+                Verdict::Contact { .. } => Some(
                     "internal error: the checker's first contact names no body of the cell"
                         .to_owned(),
-                )
-            } else {
-                (!report.certified).then(|| super::uncertified(&report))
+                ),
+                verdict => (!verdict.is_certified_free()).then(|| super::uncertified(&report)),
             };
             return done(failure, iterations, times);
         };
@@ -197,13 +196,13 @@ fn shortest_delay(
         let report = check(&schedule.pair_scene(cell, full.robot, other), &opts.check);
         // The pair must not meet while the conflicting activity lasts, nor later with one of
         // them already home for good: no wait could separate them then.
-        let cleared = match report.first_contact {
-            None => report.certified,
-            Some(c) => {
+        let cleared = match report.verdict() {
+            Verdict::Contact { contact: c, .. } => {
                 let done =
                     |r: usize| schedule.robots[r].segment_at(c.time).activity == Activity::Done;
                 c.time >= segment_end + delay.duration && !done(full.robot) && !done(other)
             }
+            verdict => verdict.is_certified_free(),
         };
         if cleared {
             return Ok(delay);

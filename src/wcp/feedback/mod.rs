@@ -21,7 +21,7 @@ use super::schedule::{Activity, BuildError, Collision, Delay, Schedule};
 use super::sequencer::{Bounds, ExactArcs, SequencerError, SequencerOptions};
 use super::time_axis::culprit;
 use crate::cell::{Cell, InputError};
-use crate::collision::{CheckOptions, CheckReport};
+use crate::collision::{CheckOptions, CheckReport, Verdict};
 use crate::geometry::Vec2;
 use crate::motion::Pose;
 use crate::planning::PlannerOptions;
@@ -246,6 +246,17 @@ pub struct Solved {
 /// its nearest allowed robot (the next nearest when that one fails), or every move (see
 /// [`Planning`]). A task that no allowed robot
 /// can reach is an input error. The time limit counts from here.
+///
+/// ```
+/// use workcell::wcp::{prepare, SolveOptions};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+/// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+/// let prepared = prepare(&cell, &SolveOptions::default(), &())?;
+/// // A small cell has every move planned before sequencing: R1's from its home (node 0)
+/// // to the first task (node 1), both ways.
+/// assert!(prepared.known[0].contains_key(&(0, 1)) && prepared.known[0].contains_key(&(1, 0)));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn prepare(
     cell: &Cell,
     opts: &SolveOptions,
@@ -317,6 +328,18 @@ pub fn sequencer_error(cell: &Cell, e: SequencerError) -> InputError {
 
 /// Solves the cell: sequences it collision-blind, then feeds collisions back as
 /// `opts.feedback` says, until the checker certifies a schedule or the limits are reached.
+///
+/// ```
+/// use workcell::wcp::{prepare, solve, SolveOptions};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+/// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+/// let opts = SolveOptions::default();
+/// let solved = solve(&cell, &prepare(&cell, &opts, &())?, &opts, &())?;
+/// assert!(solved.collision_free && solved.report.verdict().is_certified_free());
+/// // Collisions cost time: the final makespan is no shorter than the collision-blind one.
+/// assert!(solved.schedule.makespan >= solved.blind_makespan);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn solve(
     cell: &Cell,
     prepared: &Prepared,
@@ -396,13 +419,13 @@ fn build_error(
 /// Why the checker did not certify a schedule in which it found no collision: its work
 /// budget ran out on a pair, or two bodies graze δ too closely to prove either way.
 pub fn uncertified(report: &CheckReport) -> String {
-    match &report.budget_exhausted {
-        Some(b) => format!(
+    match report.verdict() {
+        Verdict::Unresolved { budget: b } => format!(
             "the checker spent its work budget ({} evaluations) on {} and {} after t = {:.6} \
              without a proof or a witness",
             b.work, b.bodies[0], b.bodies[1], b.time
         ),
-        None => "the checker cannot certify the schedule: two bodies graze delta".to_owned(),
+        _ => "the checker cannot certify the schedule: two bodies graze delta".to_owned(),
     }
 }
 

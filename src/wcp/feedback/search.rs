@@ -94,7 +94,7 @@ struct Outcome {
 
 impl Outcome {
     fn certified_free(&self) -> bool {
-        self.collision.is_none() && !self.report.collision && self.report.certified
+        self.collision.is_none() && self.report.verdict().is_certified_free()
     }
 }
 
