@@ -12,6 +12,10 @@
 //! * [`generate`]: deterministic scenes and cells for tests and benchmarks;
 //! * [`compare`]: the checking methods against each other and the parry peer.
 //!
+//! The feature `cli` (on by default) adds the command line's crates and the SVG pictures
+//! (`wcp::picture`, `compare::chart`); with `default-features = false` none of them is
+//! compiled.
+//!
 //! ```
 //! use workcell::{cell, collision};
 //! let text = r#"{"delta": 0.01, "robots": [

@@ -8,8 +8,10 @@
 //! the largest error of the first contact time. With the feature `parry-peer`, parry2d-f64's
 //! nonlinear shape cast runs as the method `parry` and cross-checks the reference.
 
+#[cfg(feature = "cli")]
 mod chart;
 
+#[cfg(feature = "cli")]
 pub use chart::chart;
 
 use crate::cell::InputError;

@@ -19,6 +19,7 @@ mod feedback;
 mod graph;
 pub mod legs;
 mod moves;
+#[cfg(feature = "cli")]
 mod picture;
 pub mod remedy_json;
 pub mod report;
@@ -39,6 +40,7 @@ pub use graph::{
 pub use moves::{
     bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore,
 };
+#[cfg(feature = "cli")]
 pub use picture::picture;
 pub use schedule::{
     route_nodes, Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,
