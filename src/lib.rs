@@ -12,6 +12,10 @@
 //! * [`generate`]: deterministic scenes and cells for tests and benchmarks;
 //! * [`compare`]: the checking methods against each other and the parry peer.
 //!
+//! The feature `cli` (on by default) adds the command line's crates and the SVG pictures
+//! ([`view`], `compare::chart`); with `default-features = false` none of them is
+//! compiled.
+//!
 //! Build scenes with [`geometry::ConvexPolygon::from_vertices`], [`motion::Trajectory::from_poses`],
 //! [`collision::Body::robot`], [`collision::Body::obstacle`] and [`collision::Scene::new`];
 //! check them with [`collision::try_check`] and decide on [`collision::CheckReport::verdict`];
@@ -69,5 +73,6 @@ pub mod generate;
 pub mod geometry;
 pub mod motion;
 pub mod planning;
+#[cfg(feature = "cli")]
 pub mod view;
 pub mod wcp;

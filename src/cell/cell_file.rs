@@ -2,7 +2,7 @@
 
 use super::object_only::object_only;
 use super::precision::check_shape_repairs;
-use super::scene_file::{document, polygon, read_file, DEFAULT_DELTA};
+use super::scene_file::{document, polygon, read_file, Point, DEFAULT_DELTA};
 use super::{InputError, MAX_COORDINATE_OVER_DELTA};
 use crate::collision::Body;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
@@ -26,7 +26,7 @@ struct RawCell {
 #[serde(remote = "Self")]
 struct RawRobot {
     name: String,
-    shape: Vec<Vec<f64>>,
+    shape: Vec<Point>,
     home: Vec<f64>,
     max_speed: f64,
     max_accel: f64,
@@ -37,7 +37,7 @@ struct RawRobot {
 #[serde(remote = "Self")]
 struct RawObstacle {
     name: String,
-    shape: Vec<Vec<f64>>,
+    shape: Vec<Point>,
 }
 
 #[derive(Deserialize)]

@@ -26,7 +26,7 @@ struct RawScene {
 #[serde(remote = "Self")]
 struct RawRobot {
     name: String,
-    shape: Vec<Vec<f64>>,
+    shape: Vec<Point>,
     trajectory: Vec<RawSample>,
 }
 
@@ -50,7 +50,44 @@ struct RawSample {
 #[serde(remote = "Self")]
 struct RawObstacle {
     name: String,
-    shape: Vec<Vec<f64>>,
+    shape: Vec<Point>,
+}
+
+/// A vertex as written, `[x, y]`, read without a vector of its own (one allocation per
+/// vertex was a tenth of loading); any other count of numbers is kept to be refused by name.
+pub(super) struct Point {
+    xy: [f64; 2],
+    len: usize,
+}
+
+impl<'de> Deserialize<'de> for Point {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Numbers;
+        impl<'de> serde::de::Visitor<'de> for Numbers {
+            type Value = Point;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                // What `Vec<f64>` says, as this was one.
+                f.write_str("a sequence")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Point, A::Error> {
+                let mut p = Point {
+                    xy: [0.0; 2],
+                    len: 0,
+                };
+                while let Some(v) = seq.next_element::<f64>()? {
+                    if let Some(slot) = p.xy.get_mut(p.len) {
+                        *slot = v;
+                    }
+                    p.len += 1;
+                }
+                Ok(p)
+            }
+        }
+        d.deserialize_seq(Numbers)
+    }
 }
 
 object_only!(
@@ -195,6 +232,22 @@ pub(super) fn document<T: serde::de::DeserializeOwned>(
     file: &Path,
     what: &str,
 ) -> Result<T, InputError> {
+    // Tracking the path of every field costs as much as the parse itself: parse without it,
+    // and only a document that fails is read again to name the field.
+    let de = &mut serde_json::Deserializer::from_str(text);
+    if let Ok(raw) = T::deserialize(&mut *de).and_then(|raw| de.end().map(|()| raw)) {
+        return Ok(raw);
+    }
+    refusal(text, file, what)
+}
+
+/// The error of [`document`] for a document that does not fit `T`.
+#[cold]
+fn refusal<T: serde::de::DeserializeOwned>(
+    text: &str,
+    file: &Path,
+    what: &str,
+) -> Result<T, InputError> {
     let de = &mut serde_json::Deserializer::from_str(text);
     let raw: T = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
         let field = match e.path().to_string() {
@@ -270,15 +323,15 @@ pub(super) fn polygon(
     file: &Path,
     body: &str,
     field: &str,
-    points: &[Vec<f64>],
+    points: &[Point],
     warnings: &mut Vec<String>,
 ) -> Result<ConvexPolygon, InputError> {
     let mut vertices = Vec::with_capacity(points.len());
     for (k, p) in points.iter().enumerate() {
-        match p[..] {
-            [x, y] => vertices.push([x, y]),
+        match p.len {
+            2 => vertices.push(p.xy),
             _ => {
-                let reason = format!("a vertex is [x, y], found {} numbers", p.len());
+                let reason = format!("a vertex is [x, y], found {} numbers", p.len);
                 return Err(InputError::new(
                     file,
                     Some(body),

@@ -8,6 +8,7 @@
 //! the largest error of the first contact time. With the feature `parry-peer`, parry2d-f64's
 //! nonlinear shape cast runs as the method `parry` and cross-checks the reference.
 
+#[cfg(feature = "cli")]
 pub use crate::view::chart;
 
 use crate::cell::InputError;

@@ -173,6 +173,12 @@ impl Trajectory {
     /// # Ok::<(), TrajectoryError>(())
     /// ```
     pub fn new(samples: Vec<Sample>) -> Result<Self, TrajectoryError> {
+        Self::validate(&samples)?;
+        Ok(Trajectory { samples })
+    }
+
+    /// What [`Trajectory::new`] refuses, without taking the samples.
+    pub(crate) fn validate(samples: &[Sample]) -> Result<(), TrajectoryError> {
         if samples.is_empty() {
             return Err(TrajectoryError::Empty);
         }
@@ -197,7 +203,7 @@ impl Trajectory {
                 });
             }
         }
-        Ok(Trajectory { samples })
+        Ok(())
     }
 
     /// The samples, in time order.
