@@ -3,7 +3,7 @@
 //! identical and tip-to-tip bodies, 10⁴:1 slivers, coordinates of 10⁶, 10⁴ samples per
 //! trajectory, a start in contact, bad time stamps and velocities that lie.
 //!
-//! Complements tests/stability.rs (gliding at δ, a teleport within one ulp, huge time
+//! Complements tests/integration/stability.rs (gliding at δ, a teleport within one ulp, huge time
 //! stamps, coordinates too large for δ). Where a contact exists, the distance at the
 //! reported time and at `safe_until` is re-computed with parry2d-f64, an independent
 //! implementation (GJK), as a cross-check of the witness.

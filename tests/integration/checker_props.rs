@@ -5,9 +5,7 @@
 //! Dense sampling can miss a short contact but never invents one, so each property below is
 //! one the checker must satisfy whatever the sampling missed.
 
-mod common;
-
-use common::{
+use crate::common::{
     centroid, dot, draw, ellipse_shape, exact_distance, lerp_pose, place, polygon, pose_at,
     proptest_config, radius_about, sub, unit_square, Shape,
 };

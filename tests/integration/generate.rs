@@ -1,9 +1,7 @@
 //! `workcell generate`: deterministic files in the scene format, and the kinds whose verdict
 //! is known by construction checked against the checker and an independent dense sampling.
 
-mod common;
-
-use common::{exact_distance, place, pose_at, Pt};
+use crate::common::{exact_distance, place, pose_at, Pt};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

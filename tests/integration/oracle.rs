@@ -2,9 +2,7 @@
 //! no code with the library, so the property tests of the walk and of the checker are only
 //! as good as it is.
 
-mod common;
-
-use common::{exact, proptest_config, unit_square, Shape};
+use crate::common::{exact, proptest_config, unit_square, Shape};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 

@@ -1,9 +1,7 @@
 //! The planner against the checker: every planned move is certified collision-free, and
 //! its samples follow the motion model (recomputed here independently).
 
-mod common;
-
-use common::{ellipse_shape, hull_shape, polygon, Shape};
+use crate::common::{ellipse_shape, hull_shape, polygon, Shape};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use workcell::collision::{check, Body, CheckOptions, Scene};

@@ -2,9 +2,7 @@
 //! brute-force distance of `common` (which shares no code with the library), and against
 //! the library's `brute_force_distance`.
 
-mod common;
-
-use common::{
+use crate::common::{
     boundary_distance, centroid, draw, ellipse_shape, exact, hull_shape, place, polygon,
     proptest_config, radius_about, rectangle_shape, regular_shape, Exact, Shape,
 };

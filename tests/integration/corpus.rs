@@ -212,7 +212,7 @@ fn halls_do_not_depend_on_the_number_of_threads() {
 /// pairs, bad-velocities and large-coordinates scenes of seeds 2 and 3 were not certified:
 /// the pair grazed just before its contact. The README's table of how often each kind ends
 /// certified is printed by
-/// `cargo test --release --test corpus every_generated_kind_ends_certified -- --nocapture`.
+/// `cargo test --release --test integration corpus::every_generated_kind_ends_certified -- --nocapture`.
 #[test]
 fn every_generated_kind_ends_certified() {
     use workcell::generate::{generate_scene, Kind};

@@ -6,9 +6,7 @@
 //! The two-robot scenes of `checker_props` (at most 3 pairs) run neither path, so their
 //! comparison of thread counts could not fail.
 
-mod common;
-
-use common::{draw, ellipse_shape, polygon};
+use crate::common::{draw, ellipse_shape, polygon};
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
 use rayon::ThreadPoolBuilder;

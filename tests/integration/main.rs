@@ -1,0 +1,28 @@
+//! The integration tests, one module per former test file, in one test binary: each test
+//! binary links the whole library and its dependencies, so 23 of them took most of a cold
+//! `cargo test --release` (issue 14, item 5). Kept apart: `tests/sequences_memory.rs`
+//! (a counting global allocator, which other tests would disturb) and
+//! `tests/fuzz_inputs.rs` (replaces the panic hook while it runs).
+
+mod boundaries;
+mod cell_file;
+mod checker_props;
+mod checker_threads;
+mod cli;
+mod cli_messages;
+mod cli_scale;
+mod cli_solve;
+mod cli_verdicts;
+mod common;
+mod compare;
+mod corpus;
+mod feedback;
+mod generate;
+mod lazy;
+mod library_inputs;
+mod narrow_phase_props;
+mod oracle;
+mod planning;
+mod sequencer;
+mod solve;
+mod stability;
