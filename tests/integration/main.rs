@@ -2,7 +2,8 @@
 //! binary links the whole library and its dependencies, so 23 of them took most of a cold
 //! `cargo test --release` (issue 14, item 5). Kept apart: `tests/sequences_memory.rs`
 //! (a counting global allocator, which other tests would disturb) and
-//! `tests/fuzz_inputs.rs` (replaces the panic hook while it runs).
+//! `tests/fuzz_inputs.rs` (replaces the panic hook while it runs), and `tests/browser.rs`
+//! (drives a browser, and its own WebDriver client module).
 
 mod boundaries;
 mod cell_file;
@@ -19,6 +20,7 @@ mod corpus;
 mod feedback;
 mod generate;
 mod lazy;
+mod library_api;
 mod library_inputs;
 mod narrow_phase_props;
 mod oracle;
@@ -26,3 +28,4 @@ mod planning;
 mod sequencer;
 mod solve;
 mod stability;
+mod view;
