@@ -1,11 +1,11 @@
 //! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
 
+use super::cell_checks::check_geometry;
 use super::object_only::object_only;
-use super::precision::check_shape_repairs;
-use super::scene_file::{document, polygon, read_file, Point, DEFAULT_DELTA};
-use super::{InputError, MAX_COORDINATE_OVER_DELTA};
+use super::reading::{delta, document, polygon, read_file, Point};
+use super::InputError;
 use crate::collision::Body;
-use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
+use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::Pose;
 use serde::Deserialize;
 use std::collections::HashMap;
@@ -166,9 +166,10 @@ pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
 /// Parses and validates a cell document; `file` names it in messages and in [`Cell::file`].
 ///
 /// Beyond the syntax: names unique among robots, obstacles and tasks; limits positive and
-/// finite; every home clear of the obstacles by δ; no task pose inside an obstacle; every task
-/// allowed to at least one robot. Whether a robot can *reach* a task is known only after
-/// planning (see `wcp::check_reachable`).
+/// finite; every task allowed to at least one robot; then the geometry: every home clear of
+/// the obstacles by δ; no task pose inside an obstacle. A document is read whole before its
+/// geometry is checked, so a fault of reading is reported before any geometric one. Whether
+/// a robot can *reach* a task is known only after planning (see `wcp::check_reachable`).
 ///
 /// ```
 /// use workcell::cell::parse_cell;
@@ -183,201 +184,45 @@ pub fn load_cell(path: &Path) -> Result<LoadedCell, InputError> {
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
 pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
+    let loaded = read_cell(text, file)?;
+    check_geometry(&loaded.cell)?;
+    Ok(loaded)
+}
+
+/// The cell as written, with names, poses, limits and task lists checked: everything but
+/// its geometry (see [`check_geometry`]).
+fn read_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
     let raw: RawCell = document(text, file, "cell")?;
-    let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
-    if !(delta.is_finite() && delta > 0.0) {
-        let reason = format!("must be a positive number, got {delta}");
-        return Err(InputError::new(file, None, "delta", reason));
-    }
+    let delta = delta(raw.delta, file)?;
     let mut names = Names::default();
     let mut warnings = Vec::new();
-    let limit = MAX_COORDINATE_OVER_DELTA * delta;
-    let err = |body: &str, field: String, reason: String| {
-        InputError::new(file, Some(body), field, reason)
-    };
-
-    let mut robots = Vec::with_capacity(raw.robots.len());
-    for (k, r) in raw.robots.iter().enumerate() {
-        let at = format!("robots[{k}]");
-        names.claim(file, &r.name, &at, "robot")?;
-        let shape = polygon(
-            file,
-            &r.name,
-            &format!("{at}.shape"),
-            &r.shape,
-            &mut warnings,
-        )?;
-        check_shape_repairs(&shape, &r.name, &at, delta, file)?;
-        if shape.radius() > limit {
-            return Err(err(
-                &r.name,
-                format!("{at}.shape"),
-                too_large(shape.radius(), delta),
-            ));
-        }
-        let home = pose(&r.home).map_err(|reason| err(&r.name, format!("{at}.home"), reason))?;
-        if home.pos.amax() > limit {
-            let reason = too_large(home.pos.amax(), delta);
-            return Err(err(&r.name, format!("{at}.home"), reason));
-        }
-        if (shape.radius() * home.theta).abs() > limit {
-            let reason = angle_too_large(home.theta, shape.radius(), delta);
-            return Err(err(&r.name, format!("{at}.home"), reason));
-        }
-        for (field, value) in [
-            ("max_speed", r.max_speed),
-            ("max_accel", r.max_accel),
-            ("max_turn_rate", r.max_turn_rate),
-        ] {
-            if !(value.is_finite() && value > 0.0) {
-                let reason = format!("must be a positive number, got {value}");
-                return Err(err(&r.name, format!("{at}.{field}"), reason));
-            }
-        }
-        robots.push(CellRobot {
-            name: r.name.clone(),
-            shape,
-            home,
-            max_speed: r.max_speed,
-            max_accel: r.max_accel,
-            max_turn_rate: r.max_turn_rate,
-        });
-    }
+    let robots = raw
+        .robots
+        .iter()
+        .enumerate()
+        .map(|(k, r)| read_robot(file, k, r, &mut names, &mut warnings))
+        .collect::<Result<Vec<_>, _>>()?;
     if robots.is_empty() {
-        return Err(InputError::new(
-            file,
-            None,
-            "robots",
-            "a cell needs at least one robot",
-        ));
+        let reason = "a cell needs at least one robot";
+        return Err(InputError::new(file, None, "robots", reason));
     }
-
-    let mut obstacles = Vec::with_capacity(raw.obstacles.len());
-    for (k, o) in raw.obstacles.iter().enumerate() {
-        let at = format!("obstacles[{k}]");
-        names.claim(file, &o.name, &at, "obstacle")?;
-        let shape = polygon(
-            file,
-            &o.name,
-            &format!("{at}.shape"),
-            &o.shape,
-            &mut warnings,
-        )?;
-        check_shape_repairs(&shape, &o.name, &at, delta, file)?;
-        let extent = shape
-            .vertices()
-            .iter()
-            .map(|v| v.amax())
-            .fold(0.0, f64::max);
-        if extent > limit {
-            return Err(err(
-                &o.name,
-                format!("{at}.shape"),
-                too_large(extent, delta),
-            ));
-        }
-        obstacles.push(CellObstacle {
-            name: o.name.clone(),
-            shape,
-        });
-    }
-
-    // A home too close to an obstacle leaves the robot in collision before it moves.
-    for (k, r) in robots.iter().enumerate() {
-        if let Some((o, d)) = nearest_obstacle(&r.shape, r.home, &obstacles, delta) {
-            let reason = format!(
-                "the robot at its home is {d:.3e} from obstacle \"{}\", closer than delta = {delta}",
-                obstacles[o].name
-            );
-            return Err(err(&r.name, format!("robots[{k}].home"), reason));
-        }
-    }
-
-    // Two robots touching at home collide before anything is scheduled: no sequence or
-    // wait can separate them.
-    for (k, r) in robots.iter().enumerate() {
-        let placed = Posed::new(&r.shape, r.home.pos.x, r.home.pos.y, r.home.theta);
-        for other in &robots[..k] {
-            let o = Posed::new(
-                &other.shape,
-                other.home.pos.x,
-                other.home.pos.y,
-                other.home.theta,
-            );
-            let d = closest_features(&placed, &o, None, &WalkTolerances::default()).distance;
-            if d < delta {
-                let reason = format!(
-                    "at home the robot is {d:.3e} from robot \"{}\" at its home, closer than delta = {delta}",
-                    other.name
-                );
-                return Err(err(&r.name, format!("robots[{k}].home"), reason));
-            }
-        }
-    }
-
+    let obstacles = raw
+        .obstacles
+        .iter()
+        .enumerate()
+        .map(|(k, o)| read_obstacle(file, k, o, &mut names, &mut warnings))
+        .collect::<Result<Vec<_>, _>>()?;
     let robot_index: HashMap<&str, usize> = robots
         .iter()
         .enumerate()
         .map(|(k, r)| (r.name.as_str(), k))
         .collect();
-    let mut tasks = Vec::with_capacity(raw.tasks.len());
-    for (k, t) in raw.tasks.iter().enumerate() {
-        let at = format!("tasks[{k}]");
-        names.claim(file, &t.name, &at, "task")?;
-        let pose = pose(&t.at).map_err(|reason| err(&t.name, format!("{at}.at"), reason))?;
-        if pose.pos.amax() > limit {
-            return Err(err(
-                &t.name,
-                format!("{at}.at"),
-                too_large(pose.pos.amax(), delta),
-            ));
-        }
-        if !(t.duration.is_finite() && t.duration >= 0.0) {
-            let reason = format!("must be a non-negative number, got {}", t.duration);
-            return Err(err(&t.name, format!("{at}.duration"), reason));
-        }
-        if let Some(o) = obstacles.iter().find(|o| contains(&o.shape, &pose.pos)) {
-            let reason = format!("the task pose is inside obstacle \"{}\"", o.name);
-            return Err(err(&t.name, format!("{at}.at"), reason));
-        }
-        let allowed = match &t.robots {
-            None => (0..robots.len()).collect(),
-            Some(list) => {
-                let mut allowed = Vec::with_capacity(list.len());
-                for (i, name) in list.iter().enumerate() {
-                    let Some(&r) = robot_index.get(name.as_str()) else {
-                        let reason = format!("no robot is named \"{name}\"");
-                        return Err(err(&t.name, format!("{at}.robots[{i}]"), reason));
-                    };
-                    allowed.push(r);
-                }
-                allowed.sort_unstable();
-                allowed.dedup();
-                allowed
-            }
-        };
-        if allowed.is_empty() {
-            let reason = "no robot may do this task: the list is empty";
-            return Err(err(&t.name, format!("{at}.robots"), reason.into()));
-        }
-        // The angle is resolved to within ulp(θ); at the robot's rim that is a length.
-        let rim = allowed
-            .iter()
-            .map(|&r| robots[r].shape.radius())
-            .fold(0.0, f64::max);
-        if (rim * pose.theta).abs() > limit {
-            let reason = angle_too_large(pose.theta, rim, delta);
-            return Err(err(&t.name, format!("{at}.at"), reason));
-        }
-        tasks.push(Task {
-            name: t.name.clone(),
-            at: pose,
-            duration: t.duration,
-            robots: allowed,
-        });
-    }
-
-    super::time_axis::check_time_axis(file, &robots, &tasks)?;
+    let tasks = raw
+        .tasks
+        .iter()
+        .enumerate()
+        .map(|(k, t)| read_task(file, k, t, &mut names, &robot_index))
+        .collect::<Result<Vec<_>, _>>()?;
     let cell = Cell {
         file: file.to_path_buf(),
         delta,
@@ -386,6 +231,97 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
         tasks,
     };
     Ok(LoadedCell { cell, warnings })
+}
+
+fn read_robot(
+    file: &Path,
+    k: usize,
+    r: &RawRobot,
+    names: &mut Names,
+    warnings: &mut Vec<String>,
+) -> Result<CellRobot, InputError> {
+    let at = format!("robots[{k}]");
+    let err = |field: String, reason: String| InputError::new(file, Some(&r.name), field, reason);
+    names.claim(file, &r.name, &at, "robot")?;
+    let shape = polygon(file, &r.name, &format!("{at}.shape"), &r.shape, warnings)?;
+    let home = pose(&r.home).map_err(|reason| err(format!("{at}.home"), reason))?;
+    for (field, value) in [
+        ("max_speed", r.max_speed),
+        ("max_accel", r.max_accel),
+        ("max_turn_rate", r.max_turn_rate),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            let reason = format!("must be a positive number, got {value}");
+            return Err(err(format!("{at}.{field}"), reason));
+        }
+    }
+    Ok(CellRobot {
+        name: r.name.clone(),
+        shape,
+        home,
+        max_speed: r.max_speed,
+        max_accel: r.max_accel,
+        max_turn_rate: r.max_turn_rate,
+    })
+}
+
+fn read_obstacle(
+    file: &Path,
+    k: usize,
+    o: &RawObstacle,
+    names: &mut Names,
+    warnings: &mut Vec<String>,
+) -> Result<CellObstacle, InputError> {
+    let at = format!("obstacles[{k}]");
+    names.claim(file, &o.name, &at, "obstacle")?;
+    let shape = polygon(file, &o.name, &format!("{at}.shape"), &o.shape, warnings)?;
+    Ok(CellObstacle {
+        name: o.name.clone(),
+        shape,
+    })
+}
+
+fn read_task(
+    file: &Path,
+    k: usize,
+    t: &RawTask,
+    names: &mut Names,
+    robot_index: &HashMap<&str, usize>,
+) -> Result<Task, InputError> {
+    let at = format!("tasks[{k}]");
+    let err = |field: String, reason: String| InputError::new(file, Some(&t.name), field, reason);
+    names.claim(file, &t.name, &at, "task")?;
+    let pose = pose(&t.at).map_err(|reason| err(format!("{at}.at"), reason))?;
+    if !(t.duration.is_finite() && t.duration >= 0.0) {
+        let reason = format!("must be a non-negative number, got {}", t.duration);
+        return Err(err(format!("{at}.duration"), reason));
+    }
+    let allowed = match &t.robots {
+        None => (0..robot_index.len()).collect(),
+        Some(list) => {
+            let mut allowed = Vec::with_capacity(list.len());
+            for (i, name) in list.iter().enumerate() {
+                let Some(&r) = robot_index.get(name.as_str()) else {
+                    let reason = format!("no robot is named \"{name}\"");
+                    return Err(err(format!("{at}.robots[{i}]"), reason));
+                };
+                allowed.push(r);
+            }
+            allowed.sort_unstable();
+            allowed.dedup();
+            allowed
+        }
+    };
+    if allowed.is_empty() {
+        let reason = "no robot may do this task: the list is empty";
+        return Err(err(format!("{at}.robots"), reason.into()));
+    }
+    Ok(Task {
+        name: t.name.clone(),
+        at: pose,
+        duration: t.duration,
+        robots: allowed,
+    })
 }
 
 /// Names already used, to refuse duplicates among robots, obstacles and tasks: homes and
@@ -428,43 +364,5 @@ fn pose(values: &[f64]) -> Result<Pose, String> {
     Ok(Pose {
         pos: Vec2::new(x, y),
         theta,
-    })
-}
-
-fn too_large(value: f64, delta: f64) -> String {
-    format!(
-        "coordinate {value:e} is too large for delta = {delta:e} (limit {:e}): f64 cannot \
-         resolve delta there; move the origin or raise delta",
-        MAX_COORDINATE_OVER_DELTA * delta
-    )
-}
-
-fn angle_too_large(theta: f64, radius: f64, delta: f64) -> String {
-    format!(
-        "angle {theta:e} is too large for delta = {delta:e}: f64 resolves it only to {:.1e} \
-         rad, {:.1e} at the robot's rim (limit |radius x theta| <= {:e}); reduce it modulo 2 pi",
-        theta.abs() * f64::EPSILON,
-        (radius * theta).abs() * f64::EPSILON,
-        MAX_COORDINATE_OVER_DELTA * delta
-    )
-}
-
-fn contains(shape: &ConvexPolygon, p: &Vec2) -> bool {
-    let n = shape.vertices().len();
-    (0..n).all(|i| shape.normals()[i].dot(&(p - shape.vertices()[i])) < 0.0)
-}
-
-/// The first obstacle closer than δ to the robot placed at `pose`, with its distance.
-pub(crate) fn nearest_obstacle(
-    shape: &ConvexPolygon,
-    pose: Pose,
-    obstacles: &[CellObstacle],
-    delta: f64,
-) -> Option<(usize, f64)> {
-    let robot = Posed::new(shape, pose.pos.x, pose.pos.y, pose.theta);
-    obstacles.iter().enumerate().find_map(|(k, o)| {
-        let obstacle = Posed::new(&o.shape, 0.0, 0.0, 0.0);
-        let d = closest_features(&robot, &obstacle, None, &WalkTolerances::default()).distance;
-        (d < delta).then_some((k, d))
     })
 }

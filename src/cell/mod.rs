@@ -1,11 +1,13 @@
 //! The model's files: reading scenes (the contract's section 1) and cells (section 3) with errors that name the
 //! file, the body and the field.
 
+mod cell_checks;
 mod cell_file;
 mod error;
 mod legs_file;
 mod object_only;
 mod precision;
+mod reading;
 mod scene_file;
 mod scene_writer;
 mod sequences_file;

@@ -106,10 +106,7 @@ pub fn check_time_resolution(scene: &Scene, time_tol: f64, file: &Path) -> Resul
 /// whose horizon is longer than f64 holds, and a δ that is not a positive number. Fields are
 /// named as in the scene file (robots first, then obstacles, in file order).
 pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), InputError> {
-    if !(delta.is_finite() && delta > 0.0) {
-        let reason = format!("must be a positive number, got {delta}");
-        return Err(InputError::new(file, None, "delta", reason));
-    }
+    crate::collision::check_delta(delta).map_err(|e| e.in_file(file))?;
     let limit = MAX_COORDINATE_OVER_DELTA * delta;
     let too_large = |value: f64, what: &str| {
         format!(

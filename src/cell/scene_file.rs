@@ -1,16 +1,13 @@
 //! Reading a scene file (contract section 1) into a [`Scene`].
 
 use super::object_only::object_only;
+use super::reading::{delta, document, polygon, read_file, Point};
 use super::InputError;
 use crate::collision::{Body, Scene};
-use crate::geometry::{ConvexPolygon, PolygonError};
 use crate::motion::{Motion, Pose, Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
-
-/// δ when the scene gives none.
-pub const DEFAULT_DELTA: f64 = 0.001;
 
 #[derive(Deserialize)]
 #[serde(remote = "Self")]
@@ -51,43 +48,6 @@ struct RawSample {
 struct RawObstacle {
     name: String,
     shape: Vec<Point>,
-}
-
-/// A vertex as written, `[x, y]`, read without a vector of its own (one allocation per
-/// vertex was a tenth of loading); any other count of numbers is kept to be refused by name.
-pub(super) struct Point {
-    xy: [f64; 2],
-    len: usize,
-}
-
-impl<'de> Deserialize<'de> for Point {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct Numbers;
-        impl<'de> serde::de::Visitor<'de> for Numbers {
-            type Value = Point;
-            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                // What `Vec<f64>` says, as this was one.
-                f.write_str("a sequence")
-            }
-            fn visit_seq<A: serde::de::SeqAccess<'de>>(
-                self,
-                mut seq: A,
-            ) -> Result<Point, A::Error> {
-                let mut p = Point {
-                    xy: [0.0; 2],
-                    len: 0,
-                };
-                while let Some(v) = seq.next_element::<f64>()? {
-                    if let Some(slot) = p.xy.get_mut(p.len) {
-                        *slot = v;
-                    }
-                    p.len += 1;
-                }
-                Ok(p)
-            }
-        }
-        d.deserialize_seq(Numbers)
-    }
 }
 
 object_only!(
@@ -146,15 +106,7 @@ pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
     let raw: RawScene =
         document(text, file, "scene").map_err(|e| cell_instead(text, file).unwrap_or(e))?;
-    let delta = raw.delta.unwrap_or(DEFAULT_DELTA);
-    if !(delta.is_finite() && delta > 0.0) {
-        return Err(InputError::new(
-            file,
-            None,
-            "delta",
-            format!("must be a positive number, got {delta}"),
-        ));
-    }
+    let delta = delta(raw.delta, file)?;
     let mut warnings = Vec::new();
     let mut names = HashSet::new();
     let mut bodies = Vec::with_capacity(raw.robots.len() + raw.obstacles.len());
@@ -219,82 +171,7 @@ fn cell_instead(text: &str, file: &Path) -> Option<InputError> {
     Some(InputError::new(file, None, "tasks", reason))
 }
 
-/// The text of the file at `path`.
-pub(super) fn read_file(path: &Path) -> Result<String, InputError> {
-    std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, None, "", format!("cannot read the file: {e}")))
-}
-
-/// One JSON document of type `T` (a `what`: scene, cell) and nothing after it; a field that
-/// does not fit is named by its path, with the body it belongs to when that can be told.
-pub(super) fn document<T: serde::de::DeserializeOwned>(
-    text: &str,
-    file: &Path,
-    what: &str,
-) -> Result<T, InputError> {
-    // Tracking the path of every field costs as much as the parse itself: parse without it,
-    // and only a document that fails is read again to name the field.
-    let de = &mut serde_json::Deserializer::from_str(text);
-    if let Ok(raw) = T::deserialize(&mut *de).and_then(|raw| de.end().map(|()| raw)) {
-        return Ok(raw);
-    }
-    refusal(text, file, what)
-}
-
-/// The error of [`document`] for a document that does not fit `T`.
-#[cold]
-fn refusal<T: serde::de::DeserializeOwned>(
-    text: &str,
-    file: &Path,
-    what: &str,
-) -> Result<T, InputError> {
-    let de = &mut serde_json::Deserializer::from_str(text);
-    let raw: T = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
-        let field = match e.path().to_string() {
-            root if root == "." => String::new(),
-            path => path,
-        };
-        let body = body_named_by(text, &field);
-        InputError::new(file, body.as_deref(), field, e.inner())
-    })?;
-    de.end().map_err(|e| {
-        let reason = format!("unexpected data after the {what} document: {e}");
-        InputError::new(file, None, "", reason)
-    })?;
-    Ok(raw)
-}
-
-/// The name of the robot, obstacle or task that a field path such as `robots[2].shape` points
-/// into, when the document is valid enough JSON to find it.
-fn body_named_by(text: &str, field: &str) -> Option<String> {
-    // Only the names are read, everything else is skipped unparsed: the field that failed
-    // (say a number out of range) must not fail this too.
-    #[derive(Deserialize)]
-    struct Named {
-        name: Option<String>,
-    }
-    #[derive(Deserialize)]
-    struct Names {
-        #[serde(default)]
-        robots: Vec<Named>,
-        #[serde(default)]
-        obstacles: Vec<Named>,
-        #[serde(default)]
-        tasks: Vec<Named>,
-    }
-    let (list, rest) = field.split_once('[')?;
-    let index: usize = rest.split_once(']')?.0.parse().ok()?;
-    let names: Names = serde_json::from_str(text).ok()?;
-    let bodies = match list {
-        "robots" => names.robots,
-        "obstacles" => names.obstacles,
-        "tasks" => names.tasks,
-        _ => return None,
-    };
-    bodies.into_iter().nth(index)?.name
-}
-
-pub(super) fn check_name(
+fn check_name(
     file: &Path,
     name: &str,
     at: &str,
@@ -317,49 +194,6 @@ pub(super) fn check_name(
         ));
     }
     Ok(())
-}
-
-pub(super) fn polygon(
-    file: &Path,
-    body: &str,
-    field: &str,
-    points: &[Point],
-    warnings: &mut Vec<String>,
-) -> Result<ConvexPolygon, InputError> {
-    let mut vertices = Vec::with_capacity(points.len());
-    for (k, p) in points.iter().enumerate() {
-        match p.len {
-            2 => vertices.push(p.xy),
-            _ => {
-                let reason = format!("a vertex is [x, y], found {} numbers", p.len);
-                return Err(InputError::new(
-                    file,
-                    Some(body),
-                    format!("{field}[{k}]"),
-                    reason,
-                ));
-            }
-        }
-    }
-    let (shape, repairs) = ConvexPolygon::new(&vertices).map_err(|e| {
-        let field = match &e {
-            PolygonError::NotFinite { vertex, .. } | PolygonError::NotConvex { vertex } => {
-                format!("{field}[{vertex}]")
-            }
-            _ => field.to_owned(),
-        };
-        InputError::new(file, Some(body), field, e)
-    })?;
-    // A long list of repairs says no more than its first few and its length.
-    const SHOWN: usize = 8;
-    let at = format!("{}: body \"{body}\", field `{field}`", file.display());
-    for r in repairs.iter().take(SHOWN) {
-        warnings.push(format!("{at}: {r}"));
-    }
-    if repairs.len() > SHOWN {
-        warnings.push(format!("{at}: and {} more repairs", repairs.len() - SHOWN));
-    }
-    Ok(shape)
 }
 
 /// Samples with defaults filled in: theta 0, velocities derived from the positions.

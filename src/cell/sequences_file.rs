@@ -33,7 +33,7 @@ pub struct Wait {
 
 /// Reads the sequences at `path` against `cell`: see [`parse_sequences`].
 pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
-    parse_sequences(&super::scene_file::read_file(path)?, path, cell)
+    parse_sequences(&super::reading::read_file(path)?, path, cell)
 }
 
 /// What a sequences document is when it is not one.
@@ -54,7 +54,7 @@ pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences
 /// Reads the collision-blind sequences of the `solve --json` result at `path` (its
 /// `blind_sequences`): see [`parse_blind_sequences`].
 pub fn load_blind_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
-    parse_blind_sequences(&super::scene_file::read_file(path)?, path, cell)
+    parse_blind_sequences(&super::reading::read_file(path)?, path, cell)
 }
 
 /// The sequencer's collision-blind sequences of a whole `solve --json` result, read from its

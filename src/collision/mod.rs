@@ -31,6 +31,7 @@ pub use method::Method;
 #[cfg(feature = "parry-peer")]
 pub use peer::{check_with_parry, PeerReport};
 pub use sampled::MAX_SAMPLED_LOOKS;
+pub(crate) use scene::check_delta;
 pub use scene::{Body, Scene};
 pub use stats::Stats;
 pub use verdict::Verdict;

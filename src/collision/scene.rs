@@ -94,14 +94,7 @@ impl Scene {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn new(delta: f64) -> Result<Self, InputError> {
-        if !(delta.is_finite() && delta > 0.0) {
-            return Err(InputError::new(
-                Path::new(""),
-                None,
-                "delta",
-                format!("must be a positive number, got {delta}"),
-            ));
-        }
+        check_delta(delta)?;
         Ok(Scene {
             delta,
             bodies: Vec::new(),
@@ -212,6 +205,16 @@ impl Scene {
         let obstacles = self.bodies.len() - robots;
         robots * robots.saturating_sub(1) / 2 + robots * obstacles
     }
+}
+
+/// Refuses a δ that is not a positive finite number: the one rule for δ, whether given in
+/// code, a file or an option. The error names field `delta` and no file.
+pub(crate) fn check_delta(delta: f64) -> Result<(), InputError> {
+    if delta.is_finite() && delta > 0.0 {
+        return Ok(());
+    }
+    let reason = format!("must be a positive number, got {delta}");
+    Err(InputError::new(Path::new(""), None, "delta", reason))
 }
 
 /// Refuses an empty name, or one that `taken` says another body has; `k` is the body's index.

@@ -133,6 +133,18 @@ fn a_task_no_robot_may_do_is_refused() {
 }
 
 #[test]
+fn a_fault_of_reading_is_reported_before_a_geometric_one() {
+    // The home inside the wall comes first in the file, the unknown robot later: the document
+    // is read whole before its geometry is checked.
+    let e = refused(&cell(
+        &robot("R1", "[2.5, 0]"),
+        WALL,
+        &task("t1", "[1, 2]", r#", "robots": ["R7"]"#),
+    ));
+    assert_eq!(e.field, "tasks[0].robots[0]", "{e}");
+}
+
+#[test]
 fn malformed_fields_name_their_path() {
     let e = refused(&cell(&robot("R1", "[0]"), "", ""));
     assert_eq!(e.field, "robots[0].home");
