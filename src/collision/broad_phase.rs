@@ -352,7 +352,14 @@ mod tests {
         let pruned: Vec<_> = all.iter().filter(|p| !candidates.contains(p)).collect();
         for &&(i, j) in &pruned {
             let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
-            let outcome = check_pair(a, b, (t0, t1), &settings, &SharedLimit::new());
+            let outcome = check_pair(
+                a,
+                b,
+                (t0, t1),
+                &settings,
+                &SharedLimit::new(),
+                &mut Default::default(),
+            );
             assert_eq!(outcome.contact, None, "{} - {} pruned", a.name, b.name);
             for k in 0..=200 {
                 let t = t0 + (t1 - t0) * k as f64 / 200.0;

@@ -2,15 +2,18 @@
 //! first.
 
 use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
-use super::pair::{check_pair, PairSettings, SharedLimit};
+use super::pair::{check_pair, PairSettings, Scratch, SharedLimit};
 use super::{Method, Scene, Stats};
 use crate::cell::{check_precision, InputError};
 use crate::geometry::WalkTolerances;
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// Scenes with fewer pairs are checked on the calling thread.
-const PARALLEL_MIN_PAIRS: usize = 4;
+/// Scenes whose pairs have fewer merged intervals than this in all (estimated from above by
+/// their sample counts) are checked on the calling thread: handing pairs to the thread pool
+/// costs about as much as checking a few hundred intervals that stay apart (the 9 pairs of
+/// `paper-fig12a`, 264 intervals, spent 37-40 % of their time in the hand-over).
+const PARALLEL_MIN_INTERVALS: usize = 1024;
 
 /// Scenes with fewer pairs skip the broad phase: its boxes cost about as much as checking a
 /// pair that stays apart (a few disc gaps per merged interval), so it only pays with many.
@@ -298,20 +301,27 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         candidate_pairs(scene, delta)
     };
     let limit = SharedLimit::new();
-    let run = |&(i, j): &(usize, usize)| {
+    let run = |scratch: &mut Scratch, &(i, j): &(usize, usize)| {
         check_pair(
             &scene.bodies[i],
             &scene.bodies[j],
             horizon,
             &settings,
             &limit,
+            scratch,
         )
     };
-    // Handing a few pairs to the thread pool costs more than checking them.
-    let outcomes: Vec<_> = if pairs.len() >= PARALLEL_MIN_PAIRS {
-        pairs.par_iter().map(run).collect()
+    // Decided by the work, not the number of pairs: many short pairs are quicker on one
+    // thread, a few long ones are not.
+    let work: usize = pairs
+        .iter()
+        .map(|&(i, j)| sample_count(&scene.bodies[i]) + sample_count(&scene.bodies[j]) + 1)
+        .sum();
+    let outcomes: Vec<_> = if pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS {
+        pairs.par_iter().map_init(Scratch::default, run).collect()
     } else {
-        pairs.iter().map(run).collect()
+        let mut scratch = Scratch::default();
+        pairs.iter().map(|p| run(&mut scratch, p)).collect()
     };
     // Earliest contact; ties go to the first pair in report order.
     let contact = outcomes
@@ -380,5 +390,14 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         pairs: pairs.len(),
         pairs_pruned: all_pairs - pairs.len(),
         pair_stats,
+    }
+}
+
+/// The number of a body's samples (0 for an obstacle): with the other body's, a bound on the
+/// merged intervals of a pair.
+fn sample_count(body: &super::Body) -> usize {
+    match &body.motion {
+        crate::motion::Motion::Sampled(tr) => tr.samples().len(),
+        crate::motion::Motion::Fixed(_) => 0,
     }
 }

@@ -13,6 +13,7 @@ mod advance;
 mod broad_phase;
 mod check;
 mod eta;
+mod grid;
 mod method;
 mod pair;
 #[cfg(feature = "parry-peer")]

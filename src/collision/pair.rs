@@ -1,6 +1,7 @@
 //! The adaptive check of one pair of bodies (Feyeux & Landry, Table 1).
 
 use super::eta::{Eta, Probe};
+use super::grid::MergedGrid;
 use super::{adaptive, advance, sampled, Method};
 use super::{Body, Stats};
 use crate::geometry::WalkTolerances;
@@ -107,17 +108,16 @@ impl SharedLimit {
 
 /// Union of both bodies' sample times within the horizon, with the horizon's ends: on each
 /// interval between consecutive grid times both poses are linear in time.
-pub(super) fn merged_grid(a: &Body, b: &Body, (t0, t1): (f64, f64)) -> Vec<f64> {
-    let mut grid: Vec<f64> = a
-        .motion
-        .times()
-        .chain(b.motion.times())
-        .filter(|&t| t > t0 && t < t1)
-        .chain([t0, t1])
-        .collect();
-    grid.sort_by(f64::total_cmp);
-    grid.dedup();
-    grid
+#[cfg(feature = "parry-peer")]
+pub(super) fn merged_grid(a: &Body, b: &Body, horizon: (f64, f64)) -> Vec<f64> {
+    MergedGrid::new(a, b, horizon).map(|(t, _)| t).collect()
+}
+
+/// What one thread reuses from pair to pair.
+#[derive(Default)]
+pub struct Scratch {
+    /// The bisection stack of the adaptive method.
+    stack: Vec<(Probe, Probe)>,
 }
 
 /// One merged interval: both poses are linear in time between its ends.
@@ -201,24 +201,27 @@ pub fn check_pair(
     horizon: (f64, f64),
     s: &PairSettings,
     limit: &SharedLimit,
+    scratch: &mut Scratch,
 ) -> PairOutcome {
-    let grid = merged_grid(a, b, horizon);
+    let mut grid = MergedGrid::new(a, b, horizon);
     let mut eta = Eta::new(a, b, s.delta, s.walk);
     let mut stats = Stats::default();
-    let mut log = Vec::with_capacity(grid.len());
-    // Bisection stack, reused by every merged interval of the pair.
-    let mut stack = Vec::new();
-    let poses_at = |t: f64| (a.motion.pose_at(t), b.motion.pose_at(t));
-    let mut left = eta.at(grid[0], poses_at(grid[0]), &mut stats);
-    let merged_intervals = grid.len() - 1;
-    let outcome = |contact: Option<PairContact>, safe_until: f64, log, total| PairOutcome {
-        contact,
-        safe_until,
-        out_of_work: false,
-        merged_intervals,
-        log,
-        total,
-    };
+    // Pairs that stop at an early contact log a few intervals: grow as needed.
+    let mut log = Vec::new();
+    let (t, poses) = grid.next().expect("a grid holds the horizon's start");
+    let mut left = eta.at(t, poses, &mut stats);
+    // Merged intervals whose right end the grid has given.
+    let mut reached = 0;
+    // Counting the intervals not examined walks the rest of the grid, without poses.
+    let outcome =
+        |contact: Option<PairContact>, safe_until: f64, log, total, reached, rest| PairOutcome {
+            contact,
+            safe_until,
+            out_of_work: false,
+            merged_intervals: reached + MergedGrid::count_rest(rest),
+            log,
+            total,
+        };
     let contact = |p: &Probe, interval| {
         limit.lower_to(p.t);
         Some(PairContact {
@@ -228,15 +231,17 @@ pub fn check_pair(
         })
     };
     if left.eta < s.delta {
-        return outcome(contact(&left, 1), left.t, log, stats);
+        return outcome(contact(&left, 1), left.t, log, stats, 0, grid);
     }
-    for (k, &t) in grid.iter().enumerate().skip(1) {
+    while let Some((t, poses)) = grid.next() {
+        reached += 1;
         if left.t > limit.get() {
-            return outcome(None, left.t, log, stats);
+            return outcome(None, left.t, log, stats, reached, grid);
         }
+        let k = reached;
         log.push((left.t, stats));
         stats.intervals += 1;
-        let right = eta.at(t, poses_at(t), &mut stats);
+        let right = eta.at(t, poses, &mut stats);
         let span = Span {
             t0: left.t,
             t1: t,
@@ -246,7 +251,8 @@ pub fn check_pair(
         let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
         let searched = match s.method {
             Method::Adaptive(bound) => {
-                adaptive::search(&mut eta, &span, ends, bound, s, &mut stack, &mut stats)
+                let stack = &mut scratch.stack;
+                adaptive::search(&mut eta, &span, ends, bound, s, stack, &mut stats)
             }
             Method::Sampled { step } => sampled::search(&mut eta, &span, ends, step, s, &mut stats),
             Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
@@ -259,18 +265,18 @@ pub fn check_pair(
                     t: span.time_after(witness.u),
                     ..witness
                 };
-                return outcome(contact(&witness, k), safe_until, log, stats);
+                return outcome(contact(&witness, k), safe_until, log, stats, k, grid);
             }
             Err(Stop::OutOfWork(safe_until)) => {
                 // Nothing after this can be the scene's first event: no pair need look on.
                 limit.lower_to(safe_until);
                 return PairOutcome {
                     out_of_work: true,
-                    ..outcome(None, safe_until, log, stats)
+                    ..outcome(None, safe_until, log, stats, k, grid)
                 };
             }
         }
         left = right;
     }
-    outcome(None, left.t, log, stats)
+    outcome(None, left.t, log, stats, reached, grid)
 }

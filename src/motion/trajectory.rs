@@ -224,11 +224,21 @@ impl Trajectory {
     /// Interpolates by the fraction of the time step, never by a rate Δpos/Δt: a step of
     /// 1e-310 would overflow the rate and turn the poses into NaN.
     pub fn pose_at(&self, t: f64) -> Pose {
+        self.pose_after(self.samples.partition_point(|s| s.t <= t), t)
+    }
+
+    /// [`Trajectory::pose_at`] when the number of samples at or before `t` is known
+    /// (`after`): a caller walking forward in time finds it without a search.
+    #[inline]
+    pub(crate) fn pose_after(&self, after: usize, t: f64) -> Pose {
         let s = &self.samples;
-        let (p, q, u) = match self.segment(t) {
-            Some(k) => (&s[k], &s[k + 1], (t - s[k].t) / (s[k + 1].t - s[k].t)),
-            None if t < s[0].t => (&s[0], &s[0], 0.0),
-            None => (&s[s.len() - 1], &s[s.len() - 1], 0.0),
+        let (p, q, u) = if after > 0 && after < s.len() {
+            let k = after - 1;
+            (&s[k], &s[k + 1], (t - s[k].t) / (s[k + 1].t - s[k].t))
+        } else if after == 0 && t < s[0].t {
+            (&s[0], &s[0], 0.0)
+        } else {
+            (&s[s.len() - 1], &s[s.len() - 1], 0.0)
         };
         Pose {
             pos: p.pos + (q.pos - p.pos) * u,
