@@ -262,10 +262,7 @@ pub fn validate(scene: &Scene, opts: &CheckOptions) -> Result<(), InputError> {
         ))
     };
     let positive = |v: f64| v.is_finite() && v > 0.0;
-    let delta = opts.delta.unwrap_or(scene.delta);
-    if !positive(delta) {
-        return refuse("delta", format!("must be a positive number, got {delta}"));
-    }
+    super::check_delta(opts.delta.unwrap_or(scene.delta))?;
     if let Some(tol) = opts.time_tol.filter(|&t| !positive(t)) {
         return refuse("time_tol", format!("must be a positive number, got {tol}"));
     }
