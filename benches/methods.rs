@@ -41,5 +41,42 @@ fn methods(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, methods);
+/// The scenes of the shared corpus whose bodies overlap at the start: a check ends at its
+/// first evaluation of each pair, so the per-pair setup and the thread hand-over are all it
+/// costs (issue 14, item 4).
+fn start_overlap(c: &mut Criterion) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus");
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    files.sort();
+    let opts = CheckOptions::default();
+    let scenes: Vec<Scene> = files
+        .iter()
+        .map(|p| workcell::cell::load_scene(p).unwrap().scene)
+        .filter(|s| {
+            let r = check(s, &opts);
+            r.first_contact.is_some_and(|c| c.time == r.horizon[0])
+        })
+        .collect();
+    let pairs: Vec<_> = scenes.iter().map(|s| candidate_pairs(s, s.delta)).collect();
+    let mut group = c.benchmark_group(format!("start-overlap/{}-scenes", scenes.len()));
+    group.bench_function("adaptive", |b| {
+        b.iter(|| scenes.iter().filter(|s| check(s, &opts).collision).count())
+    });
+    group.bench_function("parry", |b| {
+        b.iter(|| {
+            scenes
+                .iter()
+                .zip(&pairs)
+                .filter(|(s, p)| check_with_parry(s, p, s.delta).first_contact.is_some())
+                .count()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, methods, start_overlap);
 criterion_main!(benches);

@@ -2,7 +2,7 @@
 //! first.
 
 use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
-use super::pair::{check_pair, PairSettings, Scratch, SharedLimit};
+use super::pair::{PairCheck, PairSettings, Scratch, SharedLimit, Started};
 use super::{Method, Scene, Stats};
 use crate::cell::{check_precision, InputError};
 use crate::geometry::WalkTolerances;
@@ -298,15 +298,20 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         candidate_pairs(scene, delta)
     };
     let limit = SharedLimit::new();
-    let run = |scratch: &mut Scratch, &(i, j): &(usize, usize)| {
-        check_pair(
+    // Every pair is evaluated at the start before any runs on: a contact there stops all
+    // of them at their first interval.
+    let start = |&(i, j): &(usize, usize)| {
+        PairCheck::start(
             &scene.bodies[i],
             &scene.bodies[j],
             horizon,
             &settings,
             &limit,
-            scratch,
         )
+    };
+    let finish = |scratch: &mut Scratch, started| match started {
+        Started::Running(pair) => pair.finish(&settings, &limit, scratch),
+        Started::Done(done) => done,
     };
     // Decided by the work, not the number of pairs: many short pairs are quicker on one
     // thread, a few long ones are not.
@@ -315,10 +320,18 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .map(|&(i, j)| sample_count(&scene.bodies[i]) + sample_count(&scene.bodies[j]) + 1)
         .sum();
     let outcomes: Vec<_> = if pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS {
-        pairs.par_iter().map_init(Scratch::default, run).collect()
+        let started: Vec<_> = pairs.par_iter().map(start).collect();
+        started
+            .into_par_iter()
+            .map_init(Scratch::default, finish)
+            .collect()
     } else {
+        let started: Vec<_> = pairs.iter().map(start).collect();
         let mut scratch = Scratch::default();
-        pairs.iter().map(|p| run(&mut scratch, p)).collect()
+        started
+            .into_iter()
+            .map(|p| finish(&mut scratch, p))
+            .collect()
     };
     // Earliest contact; ties go to the first pair in report order.
     let contact = outcomes

@@ -195,6 +195,7 @@ fn lerp((p, q): &(Pose, Pose), u: f64) -> Pose {
 
 /// Checks one pair over the horizon, merged interval by merged interval, stopping at its
 /// first contact or at the first interval that starts after `limit`.
+#[cfg(test)]
 pub fn check_pair(
     a: &Body,
     b: &Body,
@@ -203,80 +204,154 @@ pub fn check_pair(
     limit: &SharedLimit,
     scratch: &mut Scratch,
 ) -> PairOutcome {
-    let mut grid = MergedGrid::new(a, b, horizon);
-    let mut eta = Eta::new(a, b, s.delta, s.walk);
-    let mut stats = Stats::default();
-    // Pairs that stop at an early contact log a few intervals: grow as needed.
-    let mut log = Vec::new();
-    let (t, poses) = grid.next().expect("a grid holds the horizon's start");
-    let mut left = eta.at(t, poses, &mut stats);
-    // Merged intervals whose right end the grid has given.
-    let mut reached = 0;
-    // Counting the intervals not examined walks the rest of the grid, without poses.
-    let outcome =
-        |contact: Option<PairContact>, safe_until: f64, log, total, reached, rest| PairOutcome {
-            contact,
-            safe_until,
-            out_of_work: false,
-            merged_intervals: reached + MergedGrid::count_rest(rest),
-            log,
-            total,
-        };
-    let contact = |p: &Probe, interval| {
-        limit.lower_to(p.t);
-        Some(PairContact {
-            time: p.t,
-            distance: p.eta,
-            interval,
+    match PairCheck::start(a, b, horizon, s, limit) {
+        Started::Running(pair) => pair.finish(s, limit, scratch),
+        Started::Done(done) => done,
+    }
+}
+
+/// A pair check evaluated at the horizon's start and not yet further: a scene starts every
+/// pair before it runs any, so that a contact at the start stops all of them there.
+pub struct PairCheck<'a> {
+    grid: MergedGrid<'a>,
+    eta: Eta<'a>,
+    stats: Stats,
+    left: Probe,
+}
+
+/// A pair after [`PairCheck::start`].
+pub enum Started<'a> {
+    /// Free at the start: the check goes on.
+    Running(PairCheck<'a>),
+    /// In contact at the start: its outcome.
+    Done(PairOutcome),
+}
+
+fn outcome(
+    contact: Option<PairContact>,
+    safe_until: f64,
+    log: Vec<(f64, Stats)>,
+    total: Stats,
+    reached: usize,
+    rest: MergedGrid,
+) -> PairOutcome {
+    PairOutcome {
+        contact,
+        safe_until,
+        out_of_work: false,
+        // Counting the intervals not examined walks the rest of the grid, without poses.
+        merged_intervals: reached + rest.count_rest(),
+        log,
+        total,
+    }
+}
+
+fn contact(limit: &SharedLimit, p: &Probe, interval: usize) -> Option<PairContact> {
+    limit.lower_to(p.t);
+    Some(PairContact {
+        time: p.t,
+        distance: p.eta,
+        interval,
+    })
+}
+
+impl<'a> PairCheck<'a> {
+    /// Evaluates the pair at the horizon's start; its outcome when it is in contact there.
+    pub fn start(
+        a: &'a Body,
+        b: &'a Body,
+        horizon: (f64, f64),
+        s: &PairSettings,
+        limit: &SharedLimit,
+    ) -> Started<'a> {
+        let mut grid = MergedGrid::new(a, b, horizon);
+        let mut eta = Eta::new(a, b, s.delta, s.walk);
+        let mut stats = Stats::default();
+        let (t, poses) = grid.next().expect("a grid holds the horizon's start");
+        let left = eta.at(t, poses, &mut stats);
+        if left.eta < s.delta {
+            return Started::Done(outcome(
+                contact(limit, &left, 1),
+                left.t,
+                Vec::new(),
+                stats,
+                0,
+                grid,
+            ));
+        }
+        Started::Running(PairCheck {
+            grid,
+            eta,
+            stats,
+            left,
         })
-    };
-    if left.eta < s.delta {
-        return outcome(contact(&left, 1), left.t, log, stats, 0, grid);
     }
-    while let Some((t, poses)) = grid.next() {
-        reached += 1;
-        if left.t > limit.get() {
-            return outcome(None, left.t, log, stats, reached, grid);
+
+    /// The rest of the check, from the horizon's start.
+    pub fn finish(
+        self,
+        s: &PairSettings,
+        limit: &SharedLimit,
+        scratch: &mut Scratch,
+    ) -> PairOutcome {
+        let PairCheck {
+            mut grid,
+            mut eta,
+            mut stats,
+            mut left,
+        } = self;
+        // Pairs that stop at an early contact log a few intervals: grow as needed.
+        let mut log = Vec::new();
+        // Merged intervals whose right end the grid has given.
+        let mut reached = 0;
+        while let Some((t, poses)) = grid.next() {
+            reached += 1;
+            if left.t > limit.get() {
+                return outcome(None, left.t, log, stats, reached, grid);
+            }
+            let k = reached;
+            log.push((left.t, stats));
+            stats.intervals += 1;
+            let right = eta.at(t, poses, &mut stats);
+            let span = Span {
+                t0: left.t,
+                t1: t,
+                a: (left.pose_a, right.pose_a),
+                b: (left.pose_b, right.pose_b),
+            };
+            let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
+            let searched = match s.method {
+                Method::Adaptive(bound) => {
+                    let stack = &mut scratch.stack;
+                    adaptive::search(&mut eta, &span, ends, bound, s, stack, &mut stats)
+                }
+                Method::Sampled { step } => {
+                    sampled::search(&mut eta, &span, ends, step, s, &mut stats)
+                }
+                Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
+            };
+            match searched {
+                Ok(()) => {}
+                Err(Stop::Contact(witness, safe_until)) => {
+                    // Never report a contact before its witness.
+                    let witness = Probe {
+                        t: span.time_after(witness.u),
+                        ..witness
+                    };
+                    let found = contact(limit, &witness, k);
+                    return outcome(found, safe_until, log, stats, k, grid);
+                }
+                Err(Stop::OutOfWork(safe_until)) => {
+                    // Nothing after this can be the scene's first event: no pair need look on.
+                    limit.lower_to(safe_until);
+                    return PairOutcome {
+                        out_of_work: true,
+                        ..outcome(None, safe_until, log, stats, k, grid)
+                    };
+                }
+            }
+            left = right;
         }
-        let k = reached;
-        log.push((left.t, stats));
-        stats.intervals += 1;
-        let right = eta.at(t, poses, &mut stats);
-        let span = Span {
-            t0: left.t,
-            t1: t,
-            a: (left.pose_a, right.pose_a),
-            b: (left.pose_b, right.pose_b),
-        };
-        let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
-        let searched = match s.method {
-            Method::Adaptive(bound) => {
-                let stack = &mut scratch.stack;
-                adaptive::search(&mut eta, &span, ends, bound, s, stack, &mut stats)
-            }
-            Method::Sampled { step } => sampled::search(&mut eta, &span, ends, step, s, &mut stats),
-            Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
-        };
-        match searched {
-            Ok(()) => {}
-            Err(Stop::Contact(witness, safe_until)) => {
-                // Never report a contact before its witness.
-                let witness = Probe {
-                    t: span.time_after(witness.u),
-                    ..witness
-                };
-                return outcome(contact(&witness, k), safe_until, log, stats, k, grid);
-            }
-            Err(Stop::OutOfWork(safe_until)) => {
-                // Nothing after this can be the scene's first event: no pair need look on.
-                limit.lower_to(safe_until);
-                return PairOutcome {
-                    out_of_work: true,
-                    ..outcome(None, safe_until, log, stats, k, grid)
-                };
-            }
-        }
-        left = right;
+        outcome(None, left.t, log, stats, reached, grid)
     }
-    outcome(None, left.t, log, stats, reached, grid)
 }
