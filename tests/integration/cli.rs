@@ -1,16 +1,10 @@
 //! The command line as a user meets it: verdicts, exit statuses, and errors that name the
 //! file, the body and the field.
 
+use crate::common::workcell;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 /// Writes `text` to a fresh file in a per-test temporary folder.
 fn scene_file(test: &str, text: &str) -> PathBuf {

@@ -2,23 +2,9 @@
 //! arguments refused by our own messages, a cell given to `check`, the method list of
 //! `compare`, the help of `evaluate --svg`, `evaluate --blind`, and the generator script.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("cells")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
+use crate::common::{shipped, workcell};
+use std::path::PathBuf;
+use std::process::Command;
 
 fn temp(test: &str, name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("workcell-msg-{}-{test}", std::process::id()));

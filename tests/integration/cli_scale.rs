@@ -1,15 +1,8 @@
 //! The command line of large cells: `generate --kind cell`, `solve --time-limit`,
 //! `--progress`, `--planning` and the exact flags of `--export-graph`.
 
+use crate::common::workcell;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn temp_dir(test: &str) -> PathBuf {
     let dir =

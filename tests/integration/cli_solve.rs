@@ -1,24 +1,10 @@
 //! `workcell solve` and `workcell evaluate` as a user meets them: exit statuses, the
 //! contract's JSON, the exports, and errors that name the file, the body and the field.
 
+use crate::common::{shipped, workcell};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn shipped(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("cells")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 fn temp(test: &str, name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("workcell-solve-{}-{test}", std::process::id()));

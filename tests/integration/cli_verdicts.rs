@@ -1,15 +1,9 @@
 //! What `workcell check` says and how it exits when the answer is not a plain proof: a work
 //! budget spent (exit 3), methods that certify nothing, and scenes f64 cannot check.
 
+use crate::common::workcell;
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use std::process::Output;
 
 fn scene_file(test: &str, text: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("workcell-verdicts-{}-{test}", std::process::id()));

@@ -1,18 +1,11 @@
 //! `workcell compare`: the table, the JSON and the chart, the methods' known weaknesses shown,
 //! and the parry peer's independent cross-check of the default method on every generated kind.
 
+use crate::common::workcell;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use workcell::collision::Method;
 use workcell::compare::{compare, Comparison, Contender, NamedScene};
 use workcell::generate::{generate_scene, Kind};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn cells() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cells")

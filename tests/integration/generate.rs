@@ -1,20 +1,13 @@
 //! `workcell generate`: deterministic files in the scene format, and the kinds whose verdict
 //! is known by construction checked against the checker and an independent dense sampling.
 
+use crate::common::workcell;
 use crate::common::{exact_distance, place, pose_at, Pt};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use workcell::cell::{check_precision, parse_scene, scene_document};
 use workcell::collision::{check, CheckOptions, CheckReport};
 use workcell::generate::{generate_scene, Kind};
-
-fn workcell(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workcell"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 /// A fresh, empty per-test folder.
 fn temp_dir(test: &str) -> PathBuf {

@@ -380,3 +380,20 @@ pub fn proptest_config(cases: u32) -> ProptestConfig {
 pub fn draw<S: Strategy>(strategy: &S, runner: &mut TestRunner) -> S::Value {
     strategy.new_tree(runner).unwrap().current()
 }
+
+/// Runs the `workcell` binary with `args`.
+pub fn workcell(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_workcell"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// The path of a shipped file under `cells/`.
+pub fn shipped(name: &str) -> String {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cells")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
