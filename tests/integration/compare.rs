@@ -1,16 +1,20 @@
 //! `workcell compare`: the table, the JSON and the chart, the methods' known weaknesses shown,
 //! and the parry peer's independent cross-check of the default method on every generated kind.
 
+#[cfg(feature = "cli")]
 use crate::common::workcell;
+#[cfg(feature = "cli")]
 use std::path::{Path, PathBuf};
 use workcell::collision::Method;
 use workcell::compare::{compare, Comparison, Contender, NamedScene};
 use workcell::generate::{generate_scene, Kind};
 
+#[cfg(feature = "cli")]
 fn cells() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cells")
 }
 
+#[cfg(feature = "cli")]
 fn temp(test: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("workcell-compare-{}-{test}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -21,6 +25,7 @@ fn method<'c>(c: &'c Comparison, name: &str) -> &'c workcell::compare::MethodSum
     c.methods.iter().find(|m| m.method == name).unwrap()
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn shipped_scenes_give_json_and_a_chart() {
     let svg = temp("chart").join("chart.svg");
@@ -76,6 +81,7 @@ fn shipped_scenes_give_json_and_a_chart() {
     assert!(chart.starts_with("<svg") && chart.contains("sampled:0.01"));
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn the_table_lists_every_method_asked_for() {
     let o = workcell(&[
@@ -91,6 +97,7 @@ fn the_table_lists_every_method_asked_for() {
     assert!(table.contains("| sampled:0.5 | "), "{table}");
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn bad_input_exits_2_naming_the_file() {
     let dir = temp("bad");

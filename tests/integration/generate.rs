@@ -1,15 +1,19 @@
 //! `workcell generate`: deterministic files in the scene format, and the kinds whose verdict
 //! is known by construction checked against the checker and an independent dense sampling.
 
+#[cfg(feature = "cli")]
 use crate::common::workcell;
 use crate::common::{exact_distance, place, pose_at, Pt};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+#[cfg(feature = "cli")]
+use std::path::PathBuf;
 use workcell::cell::{check_precision, parse_scene, scene_document};
 use workcell::collision::{check, CheckOptions, CheckReport};
 use workcell::generate::{generate_scene, Kind};
 
 /// A fresh, empty per-test folder.
+#[cfg(feature = "cli")]
 fn temp_dir(test: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("workcell-gen-{}-{test}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -57,6 +61,7 @@ fn distance_at(robots: &[(Vec<Pt>, Vec<[f64; 4]>)], t: f64) -> f64 {
     exact_distance(&a, &b)
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn same_arguments_give_the_same_bytes_and_seeds_differ() {
     for kind in Kind::ALL {
@@ -174,6 +179,7 @@ fn hall_has_the_requested_robots_with_100_samples() {
     parse_and_check(&t, "hall-2-0.json");
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn cli_writes_files_and_prints_them() {
     let dir = temp_dir("cli").join("nested");
@@ -237,6 +243,7 @@ fn cli_writes_files_and_prints_them() {
     }
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn cli_errors_exit_2_and_name_the_path() {
     let out = workcell(&["generate", "--kind", "nope", "--seed", "1", "--out", "x"]);
@@ -268,6 +275,7 @@ fn cli_errors_exit_2_and_name_the_path() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn cli_writes_conflict_cells_of_every_family() {
     let dir = temp_dir("cli-conflict");

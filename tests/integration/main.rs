@@ -4,15 +4,23 @@
 //! (a counting global allocator, which other tests would disturb) and
 //! `tests/fuzz_inputs.rs` (replaces the panic hook while it runs), and `tests/browser.rs`
 //! (drives a browser, and its own WebDriver client module).
+//!
+//! The modules that run the binary or draw pictures need the `cli` feature (on by default);
+//! `cargo test --no-default-features` runs the others on the bare library.
 
 mod boundaries;
 mod cell_file;
 mod checker_props;
 mod checker_threads;
+#[cfg(feature = "cli")]
 mod cli;
+#[cfg(feature = "cli")]
 mod cli_messages;
+#[cfg(feature = "cli")]
 mod cli_scale;
+#[cfg(feature = "cli")]
 mod cli_solve;
+#[cfg(feature = "cli")]
 mod cli_verdicts;
 mod common;
 mod compare;
@@ -28,4 +36,5 @@ mod planning;
 mod sequencer;
 mod solve;
 mod stability;
+#[cfg(feature = "cli")]
 mod view;
