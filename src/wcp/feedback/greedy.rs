@@ -4,13 +4,14 @@
 //! search against.
 
 use super::describe;
-use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
+use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved, StageTimes};
 use crate::cell::{Cell, InputError};
-use crate::collision::{check, Verdict};
+use crate::collision::{check, CheckReport, Verdict};
+use crate::wcp::legs::Legs;
 use crate::wcp::moves::MoveStore;
-use crate::wcp::schedule::{Activity, Delay, Segment};
+use crate::wcp::schedule::{Activity, Collision, Delay, Schedule, Segment};
 use crate::wcp::sequence::sequence_with;
-use crate::wcp::sequencer::Conflict;
+use crate::wcp::sequencer::{Conflict, Solution};
 use std::time::Instant;
 
 /// Solves the cell: the loop of the module's documentation, at most
@@ -21,141 +22,208 @@ pub fn solve(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
-    let mut times = prepared.times;
-    let cache = &prepared.moves;
-    let robots = cell.robots.len();
-    let mut conflicts: Vec<Conflict> = Vec::new();
     let clock = Instant::now();
     let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
+    let mut times = prepared.times;
     times.sequencing += clock.elapsed();
-    let mut routes = blind.sequences.clone();
-    let mut delays: Vec<Delay> = Vec::new();
-    let mut iterations = Vec::new();
+    let mut greedy = Greedy {
+        cell,
+        prepared,
+        opts,
+        progress,
+        times,
+        routes: blind.sequences.clone(),
+        delays: Vec::new(),
+        conflicts: Vec::new(),
+        iterations: Vec::new(),
+    };
     loop {
-        let clock = Instant::now();
-        let schedule = build(cell, &routes, &Delay::legs(robots, &delays), cache)?;
-        times.scheduling += clock.elapsed();
-        let clock = Instant::now();
-        let report = check(&schedule.scene(cell), &opts.check);
-        times.checking += clock.elapsed();
-        let collision = schedule.collision(cell, &report);
-        progress.iteration(iterations.len() + 1, schedule.makespan, collision.as_ref());
-        let done = |failure: Option<String>, iterations: Vec<Iteration>, times| {
-            Ok(Solved {
-                nodes: iterations.len(),
-                collision_free: failure.is_none(),
-                routes: routes.clone(),
-                legs: Delay::legs(robots, &delays),
-                schedule: schedule.clone(),
-                report: report.clone(),
-                iterations,
-                blind_routes: blind.sequences.clone(),
-                blind_makespan: blind.makespan,
-                blind_optimal: blind.optimal,
-                failure,
-                times,
-            })
-        };
-        let Some(c) = collision else {
-            iterations.push(Iteration {
-                makespan: schedule.makespan,
-                collision: None,
-                remedy: None,
-            });
-            let failure = match report.verdict() {
+        let round = greedy.check_round()?;
+        let Some(c) = round.collision.clone() else {
+            let failure = match round.report.verdict() {
                 Verdict::Contact { .. } => Some(
                     "internal error: the checker's first contact names no body of the cell"
                         .to_owned(),
                 ),
-                verdict => (!verdict.is_certified_free()).then(|| super::uncertified(&report)),
+                verdict => {
+                    (!verdict.is_certified_free()).then(|| super::uncertified(&round.report))
+                }
             };
-            return done(failure, iterations, times);
+            return Ok(greedy.finish(round, None, failure, &blind));
         };
-        if iterations.len() + 1 >= opts.max_iterations {
+        if greedy.iterations.len() + 1 >= opts.max_iterations {
             let failure = format!(
                 "no collision-free schedule within {} iteration{}; the last one collides: {}",
                 opts.max_iterations,
                 if opts.max_iterations == 1 { "" } else { "s" },
                 describe(cell, &c)
             );
-            iterations.push(Iteration {
-                makespan: schedule.makespan,
-                collision: Some(c),
-                remedy: None,
-            });
-            return done(Some(failure), iterations, times);
+            return Ok(greedy.finish(round, None, Some(failure), &blind));
         }
-        // Candidates: re-sequencing with the colliding steps forbidden together, or one of
-        // the two robots waiting until the other's activity is over. The smaller makespan wins;
-        // re-sequencing wins ties, since it removes the conflict rather than timing around it.
+        let Some(next) = greedy.best_remedy(&c, &round.schedule)? else {
+            let failure = format!("no remedy for the collision: {}", describe(cell, &c));
+            return Ok(greedy.finish(round, None, Some(failure), &blind));
+        };
+        greedy.iterations.push(Iteration {
+            makespan: round.schedule.makespan,
+            collision: Some(c),
+            remedy: Some(next.remedy),
+        });
+        greedy.routes = next.routes;
+        greedy.delays = next.delays;
+    }
+}
+
+/// The loop's state: the routes and waits of the current schedule, the conflicts forbidden
+/// so far and the rounds run.
+struct Greedy<'a> {
+    cell: &'a Cell,
+    prepared: &'a Prepared,
+    opts: &'a SolveOptions,
+    progress: &'a dyn Progress,
+    times: StageTimes,
+    routes: Vec<Vec<usize>>,
+    delays: Vec<Delay>,
+    conflicts: Vec<Conflict>,
+    iterations: Vec<Iteration>,
+}
+
+/// One round's schedule, the checker's report on it and its first collision.
+struct Round {
+    schedule: Schedule,
+    report: CheckReport,
+    collision: Option<Collision>,
+}
+
+impl Greedy<'_> {
+    fn legs(&self, delays: &[Delay]) -> Legs {
+        Delay::legs(self.cell.robots.len(), delays)
+    }
+
+    /// Builds and checks the current schedule.
+    fn check_round(&mut self) -> Result<Round, InputError> {
+        let clock = Instant::now();
+        let legs = self.legs(&self.delays);
+        let schedule = build(self.cell, &self.routes, &legs, &self.prepared.moves)?;
+        self.times.scheduling += clock.elapsed();
+        let clock = Instant::now();
+        let report = check(&schedule.scene(self.cell), &self.opts.check);
+        self.times.checking += clock.elapsed();
+        let collision = schedule.collision(self.cell, &report);
+        self.progress.iteration(
+            self.iterations.len() + 1,
+            schedule.makespan,
+            collision.as_ref(),
+        );
+        Ok(Round {
+            schedule,
+            report,
+            collision,
+        })
+    }
+
+    /// Candidates: re-sequencing with the colliding steps forbidden together, or one of the
+    /// two robots waiting until the other's activity is over. The smaller makespan wins;
+    /// re-sequencing wins ties, since it removes the conflict rather than timing around it.
+    /// None when the collision is with an obstacle or no candidate clears it.
+    fn best_remedy(
+        &mut self,
+        c: &Collision,
+        schedule: &Schedule,
+    ) -> Result<Option<Candidate>, InputError> {
+        let (Some(b), Some(seg_b)) = (c.robots.1, c.segments.1) else {
+            return Ok(None);
+        };
+        let (cell, cache) = (self.cell, &self.prepared.moves);
+        let a = c.robots.0;
         let mut best: Option<Candidate> = None;
-        if let (Some(b), Some(seg_b)) = (c.robots.1, c.segments.1) {
-            let a = c.robots.0;
-            conflicts.push(Conflict {
-                a: (a, c.segments.0.activity.step()),
-                b: (b, seg_b.activity.step()),
+        self.conflicts.push(Conflict {
+            a: (a, c.segments.0.activity.step()),
+            b: (b, seg_b.activity.step()),
+        });
+        let clock = Instant::now();
+        let resequenced = sequence_with(
+            cell,
+            self.prepared,
+            &self.conflicts,
+            self.opts,
+            None,
+            self.progress,
+        )?;
+        self.times.sequencing += clock.elapsed();
+        if resequenced.violations == 0 {
+            best = Some(Candidate {
+                makespan: resequenced.makespan,
+                remedy: Remedy::Resequence,
+                routes: resequenced.sequences,
+                delays: Vec::new(),
             });
-            let clock = Instant::now();
-            let resequenced = sequence_with(cell, prepared, &conflicts, opts, None, progress)?;
-            times.sequencing += clock.elapsed();
-            if resequenced.violations == 0 {
+        }
+        let clock = Instant::now();
+        for (x, seg_x, seg_y) in [(a, c.segments.0, seg_b), (b, seg_b, c.segments.0)] {
+            let y = if x == a { b } else { a };
+            let Some(full) = delay_until(
+                &schedule.robots[x].segments,
+                x,
+                seg_x.leg,
+                gone(&schedule.robots[y].segments, &seg_y),
+            ) else {
+                continue;
+            };
+            let delay = shortest_delay(
+                cell,
+                &self.routes,
+                &self.delays,
+                cache,
+                full,
+                y,
+                seg_x.end,
+                self.opts,
+            )?;
+            let mut candidate = self.delays.clone();
+            candidate.push(delay);
+            let makespan = build(cell, &self.routes, &self.legs(&candidate), cache)?.makespan;
+            if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                 best = Some(Candidate {
-                    makespan: resequenced.makespan,
-                    remedy: Remedy::Resequence,
-                    routes: resequenced.sequences,
-                    delays: Vec::new(),
+                    makespan,
+                    remedy: Remedy::Delay(delay),
+                    routes: self.routes.clone(),
+                    delays: candidate,
                 });
             }
-            let clock = Instant::now();
-            for (x, seg_x, seg_y) in [(a, c.segments.0, seg_b), (b, seg_b, c.segments.0)] {
-                let y = if x == a { b } else { a };
-                let Some(full) = delay_until(
-                    &schedule.robots[x].segments,
-                    x,
-                    seg_x.leg,
-                    gone(&schedule.robots[y].segments, &seg_y),
-                ) else {
-                    continue;
-                };
-                let delay =
-                    shortest_delay(cell, &routes, &delays, cache, full, y, seg_x.end, opts)?;
-                let mut candidate = delays.clone();
-                candidate.push(delay);
-                let makespan =
-                    build(cell, &routes, &Delay::legs(robots, &candidate), cache)?.makespan;
-                if best.as_ref().is_none_or(|b| makespan < b.makespan) {
-                    best = Some(Candidate {
-                        makespan,
-                        remedy: Remedy::Delay(delay),
-                        routes: routes.clone(),
-                        delays: candidate,
-                    });
-                }
-            }
-            times.scheduling += clock.elapsed();
         }
-        let Some(Candidate {
+        self.times.scheduling += clock.elapsed();
+        Ok(best)
+    }
+
+    /// The result: `round` is the last round, recorded with `remedy` (none: the loop ends on
+    /// it), and `failure` says why it is not collision-free, if it is not.
+    fn finish(
+        mut self,
+        round: Round,
+        remedy: Option<Remedy>,
+        failure: Option<String>,
+        blind: &Solution,
+    ) -> Solved {
+        self.iterations.push(Iteration {
+            makespan: round.schedule.makespan,
+            collision: round.collision,
             remedy,
-            routes: next_routes,
-            delays: next_delays,
-            ..
-        }) = best
-        else {
-            let failure = format!("no remedy for the collision: {}", describe(cell, &c));
-            iterations.push(Iteration {
-                makespan: schedule.makespan,
-                collision: Some(c),
-                remedy: None,
-            });
-            return done(Some(failure), iterations, times);
-        };
-        iterations.push(Iteration {
-            makespan: schedule.makespan,
-            collision: Some(c),
-            remedy: Some(remedy),
         });
-        routes = next_routes;
-        delays = next_delays;
+        Solved {
+            nodes: self.iterations.len(),
+            collision_free: failure.is_none(),
+            legs: self.legs(&self.delays),
+            routes: self.routes,
+            schedule: round.schedule,
+            report: round.report,
+            iterations: self.iterations,
+            blind_routes: blind.sequences.clone(),
+            blind_makespan: blind.makespan,
+            blind_optimal: blind.optimal,
+            failure,
+            times: self.times,
+        }
     }
 }
 
