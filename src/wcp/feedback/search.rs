@@ -205,23 +205,8 @@ pub(super) fn solve(
     let started = Instant::now();
     let mut stop = None;
     while let Some(Reverse((.., id))) = search.queue.pop() {
-        if search.checked >= opts.search.max_nodes {
-            stop = Some(format!(
-                "the search's budget of {} schedule{}",
-                opts.search.max_nodes,
-                if opts.search.max_nodes == 1 { "" } else { "s" }
-            ));
-            break;
-        }
-        if prepared.deadline.is_some_and(|d| Instant::now() >= d) {
-            stop = Some("the solve's time limit".to_owned());
-            break;
-        }
-        if started.elapsed() >= opts.search.time_limit {
-            stop = Some(format!(
-                "the search's time limit of {:.0} s",
-                opts.search.time_limit.as_secs_f64()
-            ));
+        stop = search.budget_spent(started);
+        if stop.is_some() {
             break;
         }
         if !search.worth(id) {
@@ -236,30 +221,59 @@ pub(super) fn solve(
             search.expand(id, progress);
         }
     }
-    let (id, failure) = match search.best {
-        Some(id) => (id, None),
-        None => {
-            let id = search.furthest.expect("the root collides");
-            let c = search.collision(id).expect("a colliding node");
-            let why = match stop {
-                Some(budget) => format!("no collision-free schedule within {budget}"),
-                None => format!(
-                    "no remedy separates the robots within {} round{}",
-                    opts.max_iterations,
-                    if opts.max_iterations == 1 { "" } else { "s" }
-                ),
-            };
-            let failure = format!(
-                "{why}; the schedule that got furthest collides: {}",
-                super::describe(cell, c)
-            );
-            (id, Some(failure))
-        }
-    };
+    let (id, failure) = search.outcome(stop);
     Ok(search.finish(id, failure, &blind))
 }
 
 impl Search<'_> {
+    /// The budget that has run out, if one has: schedules checked, the solve's time limit
+    /// or the search's own (counted from `started`).
+    fn budget_spent(&self, started: Instant) -> Option<String> {
+        let max_nodes = self.opts.search.max_nodes;
+        if self.checked >= max_nodes {
+            return Some(format!(
+                "the search's budget of {} schedule{}",
+                max_nodes,
+                if max_nodes == 1 { "" } else { "s" }
+            ));
+        }
+        if self.prepared.deadline.is_some_and(|d| Instant::now() >= d) {
+            return Some("the solve's time limit".to_owned());
+        }
+        if started.elapsed() >= self.opts.search.time_limit {
+            return Some(format!(
+                "the search's time limit of {:.0} s",
+                self.opts.search.time_limit.as_secs_f64()
+            ));
+        }
+        None
+    }
+
+    /// The node the search answers with, and why it is not collision-free if it is not: the
+    /// best certified node, or else the one that got furthest (`stop`: the budget that ended
+    /// the search, none when it ran out of nodes).
+    fn outcome(&self, stop: Option<String>) -> (usize, Option<String>) {
+        if let Some(id) = self.best {
+            return (id, None);
+        }
+        let id = self.furthest.expect("the root collides");
+        let c = self.collision(id).expect("a colliding node");
+        let max_iterations = self.opts.max_iterations;
+        let why = match stop {
+            Some(budget) => format!("no collision-free schedule within {budget}"),
+            None => format!(
+                "no remedy separates the robots within {} round{}",
+                max_iterations,
+                if max_iterations == 1 { "" } else { "s" }
+            ),
+        };
+        let failure = format!(
+            "{why}; the schedule that got furthest collides: {}",
+            super::describe(self.cell, c)
+        );
+        (id, Some(failure))
+    }
+
     fn add(&mut self, node: Node) -> usize {
         self.nodes.push(node);
         self.nodes.len() - 1
