@@ -2,7 +2,7 @@
 //! a time axis; the makespan and the collision of each feedback round marked.
 
 use super::labels::{text_width, Placer};
-use super::model::{kind_colour, Model, KINDS};
+use super::model::{kind_colour, Mark, Model, RobotView, KINDS};
 use super::picture::{line, text};
 use svg::node::element::{Group, Polygon, Rectangle, Title};
 use svg::Document;
@@ -71,78 +71,136 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
         .collect();
     let legend_rows = 1 + (kinds.len() + 2) / 5;
     let height = lanes_bottom + AXIS + LEGEND_ROW * legend_rows as f64 + 8.0;
-    let mut doc = Document::new()
-        .set("viewBox", (0.0, 0.0, width, height))
-        .set("width", width)
-        .set("height", height)
-        .set("font-family", "sans-serif")
-        .add(
-            Rectangle::new()
-                .set("width", "100%")
-                .set("height", "100%")
-                .set("fill", "white"),
-        )
-        .add(
-            text(
-                width / 2.0,
-                24.0,
-                &format!("{}: schedule", m.title),
-                18.0,
-                "#212121",
-            )
-            .set("text-anchor", "middle")
-            .set("font-weight", "bold"),
-        )
-        .add(text(width / 2.0, 44.0, &m.verdict, 13.0, "#424242").set("text-anchor", "middle"));
-    // Ticks at 1, 2 or 5 times a power of ten.
-    let raw = (t1 - t0) / TICKS;
-    let p = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0]
-        .into_iter()
-        .map(|f| f * p)
-        .find(|s| *s >= raw)
-        .unwrap_or(10.0 * p);
-    let mut t = (t0 / step).ceil() * step;
-    let mut ticks = Group::new().set("stroke", "#e0e0e0");
-    let mut tick_labels = Group::new();
-    while t <= t1 + 1e-9 * step {
-        let x = axis.x(t);
-        ticks = ticks
-            .add(line(x, HEADER, x, lanes_bottom))
-            .add(line(x, lanes_bottom, x, lanes_bottom + 5.0).set("stroke", "#424242"));
-        let label = format!("{}", (t / step).round() * step);
-        let label = if label.len() > 8 {
-            format!("{t:.3e}")
-        } else {
-            label
-        };
-        tick_labels = tick_labels.add(
-            text(x, lanes_bottom + 18.0, &label, 11.0, "#424242").set("text-anchor", "middle"),
-        );
-        t += step;
-    }
-    doc = doc
-        .add(ticks)
-        .add(tick_labels)
-        .add(line(LEFT, lanes_bottom, axis.x(t1), lanes_bottom).set("stroke", "#424242"))
-        .add(
-            text(width - RIGHT, lanes_bottom + 32.0, "time", 11.0, "#424242")
-                .set("text-anchor", "end"),
-        );
+    let chart = Chart {
+        m,
+        width,
+        axis,
+        t1,
+        lanes_bottom,
+    };
+    let mut doc = chart.header(height);
+    doc = chart.ticks(doc);
     let mut placer = Placer::new([LEFT, 48.0, width, lanes_bottom]);
-    // Collision marks by lane: a task's name is left out of a bar that one would cover.
-    let marked = |robot: &str| -> Vec<f64> {
+    for (r, robot) in m.robots.iter().enumerate() {
+        doc = chart.lane(doc, r, robot, &mut placer);
+    }
+    doc = chart.makespan(doc, &mut placer);
+    doc = chart.collisions(doc, &mut placer);
+    if cursor {
+        doc = doc.add(
+            line(LEFT, HEADER - 4.0, LEFT, lanes_bottom + 4.0)
+                .set("id", "cursor")
+                .set("stroke", "#d50000")
+                .set("stroke-width", 2),
+        );
+    }
+    (chart.legend(doc, &kinds), axis)
+}
+
+/// What every part of the chart is drawn from.
+struct Chart<'a> {
+    m: &'a Model,
+    width: f64,
+    axis: TimeAxis,
+    /// The end of the time axis.
+    t1: f64,
+    lanes_bottom: f64,
+}
+
+impl Chart<'_> {
+    /// A white page with the title and the verdict.
+    fn header(&self, height: f64) -> Document {
+        let (m, width) = (self.m, self.width);
+        Document::new()
+            .set("viewBox", (0.0, 0.0, width, height))
+            .set("width", width)
+            .set("height", height)
+            .set("font-family", "sans-serif")
+            .add(
+                Rectangle::new()
+                    .set("width", "100%")
+                    .set("height", "100%")
+                    .set("fill", "white"),
+            )
+            .add(
+                text(
+                    width / 2.0,
+                    24.0,
+                    &format!("{}: schedule", m.title),
+                    18.0,
+                    "#212121",
+                )
+                .set("text-anchor", "middle")
+                .set("font-weight", "bold"),
+            )
+            .add(text(width / 2.0, 44.0, &m.verdict, 13.0, "#424242").set("text-anchor", "middle"))
+    }
+
+    /// The time axis under the lanes, with grid lines and labels at 1, 2 or 5 times a power
+    /// of ten.
+    fn ticks(&self, doc: Document) -> Document {
+        let (axis, t1, lanes_bottom) = (self.axis, self.t1, self.lanes_bottom);
+        let raw = (t1 - axis.t0) / TICKS;
+        let p = 10f64.powf(raw.log10().floor());
+        let step = [1.0, 2.0, 5.0, 10.0]
+            .into_iter()
+            .map(|f| f * p)
+            .find(|s| *s >= raw)
+            .unwrap_or(10.0 * p);
+        let mut t = (axis.t0 / step).ceil() * step;
+        let mut ticks = Group::new().set("stroke", "#e0e0e0");
+        let mut tick_labels = Group::new();
+        while t <= t1 + 1e-9 * step {
+            let x = axis.x(t);
+            ticks = ticks
+                .add(line(x, HEADER, x, lanes_bottom))
+                .add(line(x, lanes_bottom, x, lanes_bottom + 5.0).set("stroke", "#424242"));
+            let label = format!("{}", (t / step).round() * step);
+            let label = if label.len() > 8 {
+                format!("{t:.3e}")
+            } else {
+                label
+            };
+            tick_labels = tick_labels.add(
+                text(x, lanes_bottom + 18.0, &label, 11.0, "#424242").set("text-anchor", "middle"),
+            );
+            t += step;
+        }
+        doc.add(ticks)
+            .add(tick_labels)
+            .add(line(LEFT, lanes_bottom, axis.x(t1), lanes_bottom).set("stroke", "#424242"))
+            .add(
+                text(
+                    self.width - RIGHT,
+                    lanes_bottom + 32.0,
+                    "time",
+                    11.0,
+                    "#424242",
+                )
+                .set("text-anchor", "end"),
+            )
+    }
+
+    /// The collision marks: each feedback round's, or the check's contact when there are no
+    /// rounds.
+    fn marks(&self) -> impl Iterator<Item = &Mark> {
+        let m = self.m;
         m.rounds
             .iter()
             .chain(m.rounds.is_empty().then_some(()).and(m.contact.as_ref()))
-            .filter(|mark| mark.bodies.iter().any(|b| b == robot))
+    }
+
+    /// Robot `r`'s name and lane of bars, task names in the bars they fit.
+    fn lane(&self, doc: Document, r: usize, robot: &RobotView, placer: &mut Placer) -> Document {
+        let (axis, t1) = (self.axis, self.t1);
+        // Collision marks on this lane: a task's name is left out of a bar that one would cover.
+        let marks_here: Vec<f64> = self
+            .marks()
+            .filter(|mark| mark.bodies.contains(&robot.name))
             .map(|mark| axis.x(mark.time))
-            .collect()
-    };
-    for (r, robot) in m.robots.iter().enumerate() {
-        let marks_here = marked(&robot.name);
+            .collect();
         let y = HEADER + LANE * r as f64 + (LANE - BAR) / 2.0;
-        doc = doc.add(
+        let doc = doc.add(
             text(LEFT - 8.0, y + BAR * 0.75, &robot.name, 12.0, robot.colour)
                 .set("text-anchor", "end")
                 .set("font-weight", "bold"),
@@ -195,127 +253,126 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
                 );
             }
         }
-        doc = doc.add(lane);
+        doc.add(lane)
     }
-    // The makespan, from the header to the axis.
-    let xm = axis.x(m.end);
-    let label = format!("makespan {:.3}", m.end);
-    doc = doc
-        .add(
-            line(xm, 52.0, xm, lanes_bottom)
+
+    /// The makespan, a dashed line from the header to the axis, and its label.
+    fn makespan(&self, doc: Document, placer: &mut Placer) -> Document {
+        let m = self.m;
+        let xm = self.axis.x(m.end);
+        let label = format!("makespan {:.3}", m.end);
+        placer.take([xm - 8.0 - text_width(&label, 11.0), 52.0, xm + 2.0, 68.0]);
+        doc.add(
+            line(xm, 52.0, xm, self.lanes_bottom)
                 .set("id", "makespan")
                 .set("stroke", "#212121")
                 .set("stroke-width", 1.5)
                 .set("stroke-dasharray", "5 3"),
         )
-        .add(text(xm - 4.0, 64.0, &label, 11.0, "#212121").set("text-anchor", "end"));
-    placer.take([xm - 8.0 - text_width(&label, 11.0), 52.0, xm + 2.0, 68.0]);
-    // Each round's collision on the lanes of both its robots, numbered by round.
-    let lane_of = |name: &str| m.robots.iter().position(|r| r.name == name);
-    let marks = m
-        .rounds
-        .iter()
-        .chain(m.rounds.is_empty().then_some(()).and(m.contact.as_ref()));
-    let mut diamonds = Group::new().set("fill", "#d50000").set("stroke", "white");
-    let mut numbers = Vec::new();
-    for mark in marks {
-        let x = axis.x(mark.time);
-        for lane in mark.bodies.iter().filter_map(|b| lane_of(b)) {
-            let y = HEADER + LANE * lane as f64 + LANE / 2.0;
-            diamonds = diamonds.add(Polygon::new().set(
-                "points",
-                format!(
-                    "{:.2},{:.2} {:.2},{:.2} {:.2},{:.2} {:.2},{:.2}",
-                    x,
-                    y - 7.0,
-                    x + 5.0,
-                    y,
-                    x,
-                    y + 7.0,
-                    x - 5.0,
-                    y
-                ),
-            ));
-            placer.take([x - 5.0, y - 7.0, x + 5.0, y + 7.0]);
-            numbers.push((x, y, mark.round));
+        .add(text(xm - 4.0, 64.0, &label, 11.0, "#212121").set("text-anchor", "end"))
+    }
+
+    /// Each round's collision as a diamond on the lanes of both its robots, numbered by
+    /// round; a number sits in the gap above its lane, at its mark or as near beside it as
+    /// is free.
+    fn collisions(&self, mut doc: Document, placer: &mut Placer) -> Document {
+        let m = self.m;
+        let lane_of = |name: &str| m.robots.iter().position(|r| r.name == name);
+        let mut diamonds = Group::new().set("fill", "#d50000").set("stroke", "white");
+        let mut numbers = Vec::new();
+        for mark in self.marks() {
+            let x = self.axis.x(mark.time);
+            for lane in mark.bodies.iter().filter_map(|b| lane_of(b)) {
+                let y = HEADER + LANE * lane as f64 + LANE / 2.0;
+                diamonds = diamonds.add(Polygon::new().set(
+                    "points",
+                    format!(
+                        "{:.2},{:.2} {:.2},{:.2} {:.2},{:.2} {:.2},{:.2}",
+                        x,
+                        y - 7.0,
+                        x + 5.0,
+                        y,
+                        x,
+                        y + 7.0,
+                        x - 5.0,
+                        y
+                    ),
+                ));
+                placer.take([x - 5.0, y - 7.0, x + 5.0, y + 7.0]);
+                numbers.push((x, y, mark.round));
+            }
         }
-    }
-    doc = doc.add(diamonds);
-    // A number sits in the gap above its lane, at its mark or as near beside it as is free.
-    for (x, y, round) in numbers {
-        let label = round.map_or("collision".to_owned(), |r| r.to_string());
-        let w = text_width(&label, 10.0);
-        let base = y - BAR / 2.0 - 3.0;
-        let spot = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0]
-            .into_iter()
-            .map(|k| x - w / 2.0 + k * (w + 3.0))
-            .find(|&x0| placer.free(&[x0 - 1.0, base - 9.0, x0 + w + 1.0, base + 1.0]));
-        if let Some(x0) = spot {
-            placer.take([x0 - 1.0, base - 9.0, x0 + w + 1.0, base + 1.0]);
-            doc = doc.add(
-                text(x0, base, &label, 10.0, "#d50000")
-                    .set("font-weight", "bold")
-                    .set("paint-order", "stroke")
-                    .set("stroke", "white")
-                    .set("stroke-width", 3),
-            );
+        doc = doc.add(diamonds);
+        for (x, y, round) in numbers {
+            let label = round.map_or("collision".to_owned(), |r| r.to_string());
+            let w = text_width(&label, 10.0);
+            let base = y - BAR / 2.0 - 3.0;
+            let spot = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0]
+                .into_iter()
+                .map(|k| x - w / 2.0 + k * (w + 3.0))
+                .find(|&x0| placer.free(&[x0 - 1.0, base - 9.0, x0 + w + 1.0, base + 1.0]));
+            if let Some(x0) = spot {
+                placer.take([x0 - 1.0, base - 9.0, x0 + w + 1.0, base + 1.0]);
+                doc = doc.add(
+                    text(x0, base, &label, 10.0, "#d50000")
+                        .set("font-weight", "bold")
+                        .set("paint-order", "stroke")
+                        .set("stroke", "white")
+                        .set("stroke-width", 3),
+                );
+            }
         }
+        doc
     }
-    if cursor {
-        doc = doc.add(
-            line(LEFT, HEADER - 4.0, LEFT, lanes_bottom + 4.0)
-                .set("id", "cursor")
-                .set("stroke", "#d50000")
-                .set("stroke-width", 2),
-        );
-    }
-    // Legend: the kinds present, the collision marks and the makespan.
-    let mut x = LEFT;
-    let mut y = lanes_bottom + AXIS + LEGEND_ROW - 4.0;
-    let mut n = 0;
-    for k in kinds {
-        doc = doc
-            .add(
-                Rectangle::new()
-                    .set("x", x)
-                    .set("y", y - 10.0)
-                    .set("width", 16)
-                    .set("height", 10)
-                    .set("fill", k.1),
-            )
-            .add(text(x + 20.0, y, k.2, 11.0, "#212121"));
-        n += 1;
-        x += (width - LEFT - RIGHT) / 5.0;
-        if n % 5 == 0 {
-            x = LEFT;
-            y += LEGEND_ROW;
+
+    /// The legend: the kinds present, the collision marks and the makespan.
+    fn legend(&self, mut doc: Document, kinds: &[&(&str, &str, &str)]) -> Document {
+        let (m, width) = (self.m, self.width);
+        let mut x = LEFT;
+        let mut y = self.lanes_bottom + AXIS + LEGEND_ROW - 4.0;
+        for (n, k) in kinds.iter().enumerate() {
+            doc = doc
+                .add(
+                    Rectangle::new()
+                        .set("x", x)
+                        .set("y", y - 10.0)
+                        .set("width", 16)
+                        .set("height", 10)
+                        .set("fill", k.1),
+                )
+                .add(text(x + 20.0, y, k.2, 11.0, "#212121"));
+            x += (width - LEFT - RIGHT) / 5.0;
+            if (n + 1) % 5 == 0 {
+                x = LEFT;
+                y += LEGEND_ROW;
+            }
         }
+        if !m.rounds.is_empty() || m.contact.is_some() {
+            let what = if m.rounds.is_empty() {
+                "the collision"
+            } else {
+                "n: collision of round n (both robots)"
+            };
+            doc = doc
+                .add(
+                    Polygon::new()
+                        .set(
+                            "points",
+                            format!(
+                                "{x},{} {},{} {x},{} {},{}",
+                                y - 12.0,
+                                x + 5.0,
+                                y - 5.0,
+                                y + 2.0,
+                                x - 5.0,
+                                y - 5.0
+                            ),
+                        )
+                        .set("fill", "#d50000")
+                        .set("transform", "translate(6 0)"),
+                )
+                .add(text(x + 20.0, y, what, 11.0, "#212121"));
+        }
+        doc
     }
-    if !m.rounds.is_empty() || m.contact.is_some() {
-        let what = if m.rounds.is_empty() {
-            "the collision"
-        } else {
-            "n: collision of round n (both robots)"
-        };
-        doc = doc
-            .add(
-                Polygon::new()
-                    .set(
-                        "points",
-                        format!(
-                            "{x},{} {},{} {x},{} {},{}",
-                            y - 12.0,
-                            x + 5.0,
-                            y - 5.0,
-                            y + 2.0,
-                            x - 5.0,
-                            y - 5.0
-                        ),
-                    )
-                    .set("fill", "#d50000")
-                    .set("transform", "translate(6 0)"),
-            )
-            .add(text(x + 20.0, y, what, 11.0, "#212121"));
-    }
-    (doc, axis)
 }
