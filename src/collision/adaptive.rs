@@ -1,7 +1,7 @@
 //! Table 1 of Feyeux & Landry on one merged interval: certify or bisect.
 
-use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span, Stop};
+use super::eta::Eta;
+use super::span::{PairSettings, Probe, Span, Stop};
 use super::Stats;
 use crate::motion::BoundKind;
 

@@ -1,7 +1,7 @@
 //! Conservative advancement on one merged interval (the time of impact of Box2D and FCL).
 
-use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span, Stop};
+use super::eta::Eta;
+use super::span::{PairSettings, Probe, Span, Stop};
 use super::{adaptive, Stats};
 use crate::motion::BoundKind;
 

@@ -323,7 +323,8 @@ fn meeting(boxes: &[(usize, Aabb)], out: &mut Vec<(usize, usize)>) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::pair::{check_pair, PairSettings, SharedLimit};
+    use super::super::pair::{check_pair, SharedLimit};
+    use super::super::span::PairSettings;
     use super::*;
     use crate::collision::Body;
     use crate::generate::{generate_scene, Kind};
@@ -344,7 +345,6 @@ mod tests {
             delta,
             grazing_tol: 1e-4 * delta,
             time_tol: 1e-6 * (t1 - t0),
-            method: crate::collision::Method::DEFAULT,
             start: t0,
             walk: Default::default(),
             max_work: crate::collision::DEFAULT_MAX_WORK_PER_PAIR,
@@ -356,6 +356,7 @@ mod tests {
                 a,
                 b,
                 (t0, t1),
+                crate::collision::Method::DEFAULT,
                 &settings,
                 &SharedLimit::new(),
                 &mut Default::default(),

@@ -2,7 +2,9 @@
 //! first.
 
 use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
-use super::pair::{PairCheck, PairSettings, Scratch, SharedLimit, Started};
+use super::method::Scratch;
+use super::pair::{PairCheck, SharedLimit, Started};
+use super::span::PairSettings;
 use super::{Method, Scene, Stats};
 use crate::cell::{check_precision, InputError};
 use crate::geometry::WalkTolerances;
@@ -286,7 +288,6 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         delta,
         grazing_tol: opts.grazing_tol * delta,
         time_tol,
-        method: opts.method,
         start: horizon.0,
         walk: opts.walk,
         max_work: opts.max_work_per_pair,
@@ -310,7 +311,7 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         )
     };
     let finish = |scratch: &mut Scratch, started| match started {
-        Started::Running(pair) => pair.finish(&settings, &limit, scratch),
+        Started::Running(pair) => pair.finish(opts.method, &settings, &limit, scratch),
         Started::Done(done) => done,
     };
     // Decided by the work, not the number of pairs: many short pairs are quicker on one

@@ -1,25 +1,9 @@
 //! η(t): a lower bound of the distance between two bodies at time t.
 
+use super::span::Probe;
 use super::{Body, Stats};
 use crate::geometry::{closest_features, FeaturePair, Posed, Vec2, WalkTolerances};
 use crate::motion::{lambda, BoundKind, Pose};
-
-/// A pair probed at one time: both poses and η.
-#[derive(Clone, Copy, Debug)]
-pub struct Probe {
-    pub t: f64,
-    /// Position in the merged interval being checked: 0 at its start, 1 at its end.
-    pub u: f64,
-    pub pose_a: Pose,
-    pub pose_b: Pose,
-    /// Lower bound of the distance; exact whenever it is below δ.
-    pub eta: f64,
-    /// Whether `eta` is the exact distance (else the disc gap).
-    pub exact: bool,
-    /// When `exact`, the unit direction from A's closest point to B's (zero on overlap);
-    /// zero otherwise (the disc direction follows from the poses).
-    pub normal: Vec2,
-}
 
 /// Evaluates η for one pair, keeping the last closest features for the next warm start.
 pub struct Eta<'s> {

@@ -1,5 +1,9 @@
 //! The ways of searching one merged interval for a contact, behind one interface.
 
+use super::eta::Eta;
+use super::span::{PairSettings, Probe, Span, Stop};
+use super::stats::Stats;
+use super::{adaptive, advance, sampled};
 use crate::motion::BoundKind;
 use std::fmt;
 use std::str::FromStr;
@@ -76,6 +80,35 @@ impl FromStr for Method {
                     "unknown method `{s}`: expected adaptive, adaptive-paper, sampled:STEP or advance"
                 )),
             },
+        }
+    }
+}
+
+/// What one thread reuses from pair to pair.
+#[derive(Default)]
+pub struct Scratch {
+    /// The bisection stack of the adaptive method.
+    stack: Vec<(Probe, Probe)>,
+}
+
+impl Method {
+    /// Searches one merged interval, both ends evaluated and the left one free: `Ok` when
+    /// the method finds no contact in it, else why it stopped.
+    pub(super) fn search(
+        self,
+        eta: &mut Eta,
+        span: &Span,
+        ends: (Probe, Probe),
+        s: &PairSettings,
+        scratch: &mut Scratch,
+        stats: &mut Stats,
+    ) -> Result<(), Stop> {
+        match self {
+            Method::Adaptive(bound) => {
+                adaptive::search(eta, span, ends, bound, s, &mut scratch.stack, stats)
+            }
+            Method::Sampled { step } => sampled::search(eta, span, ends, step, s, stats),
+            Method::Advance => advance::search(eta, span, ends, s, stats),
         }
     }
 }

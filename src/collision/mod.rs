@@ -20,6 +20,7 @@ mod pair;
 mod peer;
 mod sampled;
 mod scene;
+mod span;
 mod stats;
 mod verdict;
 

@@ -1,48 +1,12 @@
-//! The adaptive check of one pair of bodies (Feyeux & Landry, Table 1).
+//! The check of one pair of bodies: its merged intervals in time order, each searched by the
+//! method (Feyeux & Landry, Table 1, by default).
 
-use super::eta::{Eta, Probe};
+use super::eta::Eta;
 use super::grid::MergedGrid;
-use super::{adaptive, advance, sampled, Method};
+use super::method::{Method, Scratch};
+use super::span::{PairSettings, Probe, Span, Stop};
 use super::{Body, Stats};
-use crate::geometry::WalkTolerances;
-use crate::motion::Pose;
 use std::sync::atomic::{AtomicU64, Ordering};
-
-/// Settings of a pair check, in the scene's units.
-#[derive(Clone, Copy, Debug)]
-pub struct PairSettings {
-    /// δ: closer than this is a collision.
-    pub delta: f64,
-    /// Grazing allowance (length): an interval shorter than `time_tol` that can only be
-    /// shown to stay above δ − `grazing_tol` counts as a graze, not a contact.
-    pub grazing_tol: f64,
-    /// The first contact is reported no later than this after the true one.
-    pub time_tol: f64,
-    /// How each merged interval is searched.
-    pub method: Method,
-    /// Start of the horizon: the sampled method looks at start + k·step.
-    pub start: f64,
-    /// Narrow-phase tolerances.
-    pub walk: WalkTolerances,
-    /// Work budget of the pair: evaluations of η (merged interval ends, bisections, looks).
-    pub max_work: u64,
-}
-
-impl PairSettings {
-    /// Whether the pair has done all the work it may (see [`PairSettings::max_work`]).
-    pub fn out_of_work(&self, stats: &Stats) -> bool {
-        stats.intervals + stats.bisections + stats.looks >= self.max_work
-    }
-}
-
-/// Why a search of a merged interval stopped before its end.
-#[derive(Clone, Copy, Debug)]
-pub(super) enum Stop {
-    /// A witness closer than δ, and the end of the certified prefix before it.
-    Contact(Probe, f64),
-    /// The work budget ran out; the prefix up to this time is certified.
-    OutOfWork(f64),
-}
 
 /// A contact found on one pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,86 +77,6 @@ pub(super) fn merged_grid(a: &Body, b: &Body, horizon: (f64, f64)) -> Vec<f64> {
     MergedGrid::new(a, b, horizon).map(|(t, _)| t).collect()
 }
 
-/// What one thread reuses from pair to pair.
-#[derive(Default)]
-pub struct Scratch {
-    /// The bisection stack of the adaptive method.
-    stack: Vec<(Probe, Probe)>,
-}
-
-/// One merged interval: both poses are linear in time between its ends.
-///
-/// Points inside it are addressed by a parameter u in [0, 1], not by time: the poses
-/// are interpolated between the ends directly, so bisection keeps its resolution even where
-/// time stamps are huge or an interval is a single unit in the last place long.
-pub(super) struct Span {
-    pub t0: f64,
-    pub t1: f64,
-    pub a: (Pose, Pose),
-    pub b: (Pose, Pose),
-}
-
-impl Span {
-    pub fn time(&self, u: f64) -> f64 {
-        if u == 1.0 {
-            self.t1
-        } else {
-            self.t0 + u * (self.t1 - self.t0)
-        }
-    }
-
-    /// The time at `u` and the error of that f64 against the exact t0 + u·(t1 − t0), by
-    /// error-free transformations (TwoSum, FMA): positive when the f64 is early.
-    fn time_and_error(&self, u: f64) -> (f64, f64) {
-        let two_sum = |x: f64, y: f64| {
-            let s = x + y;
-            let yy = s - x;
-            (s, (x - (s - yy)) + (y - yy))
-        };
-        let (d, d_err) = two_sum(self.t1, -self.t0);
-        let p = u * d;
-        let p_err = u.mul_add(d, -p);
-        let (t, t_err) = two_sum(self.t0, p);
-        (t, t_err + p_err + u * d_err)
-    }
-
-    /// The least f64 time not before the instant at `u`: a contact reported there is never
-    /// earlier than its witness, even where the time stamps are huge.
-    pub fn time_after(&self, u: f64) -> f64 {
-        match u {
-            0.0 => self.t0,
-            1.0 => self.t1,
-            _ => match self.time_and_error(u) {
-                (t, e) if e > 0.0 => t.next_up(),
-                (t, _) => t,
-            },
-        }
-    }
-
-    /// The greatest f64 time not after the instant at `u`: the end of a certified prefix.
-    pub fn time_before(&self, u: f64) -> f64 {
-        match u {
-            0.0 => self.t0,
-            1.0 => self.t1,
-            _ => match self.time_and_error(u) {
-                (t, e) if e < 0.0 => t.next_down(),
-                (t, _) => t,
-            },
-        }
-    }
-
-    pub fn poses(&self, u: f64) -> (Pose, Pose) {
-        (lerp(&self.a, u), lerp(&self.b, u))
-    }
-}
-
-fn lerp((p, q): &(Pose, Pose), u: f64) -> Pose {
-    Pose {
-        pos: p.pos + (q.pos - p.pos) * u,
-        theta: p.theta + (q.theta - p.theta) * u,
-    }
-}
-
 /// Checks one pair over the horizon, merged interval by merged interval, stopping at its
 /// first contact or at the first interval that starts after `limit`.
 #[cfg(test)]
@@ -200,12 +84,13 @@ pub fn check_pair(
     a: &Body,
     b: &Body,
     horizon: (f64, f64),
+    method: Method,
     s: &PairSettings,
     limit: &SharedLimit,
     scratch: &mut Scratch,
 ) -> PairOutcome {
     match PairCheck::start(a, b, horizon, s, limit) {
-        Started::Running(pair) => pair.finish(s, limit, scratch),
+        Started::Running(pair) => pair.finish(method, s, limit, scratch),
         Started::Done(done) => done,
     }
 }
@@ -287,9 +172,11 @@ impl<'a> PairCheck<'a> {
         })
     }
 
-    /// The rest of the check, from the horizon's start.
+    /// The rest of the check, from the horizon's start, each merged interval searched by
+    /// `method`.
     pub fn finish(
         self,
+        method: Method,
         s: &PairSettings,
         limit: &SharedLimit,
         scratch: &mut Scratch,
@@ -320,16 +207,7 @@ impl<'a> PairCheck<'a> {
                 b: (left.pose_b, right.pose_b),
             };
             let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
-            let searched = match s.method {
-                Method::Adaptive(bound) => {
-                    let stack = &mut scratch.stack;
-                    adaptive::search(&mut eta, &span, ends, bound, s, stack, &mut stats)
-                }
-                Method::Sampled { step } => {
-                    sampled::search(&mut eta, &span, ends, step, s, &mut stats)
-                }
-                Method::Advance => advance::search(&mut eta, &span, ends, s, &mut stats),
-            };
+            let searched = method.search(&mut eta, &span, ends, s, scratch, &mut stats);
             match searched {
                 Ok(()) => {}
                 Err(Stop::Contact(witness, safe_until)) => {

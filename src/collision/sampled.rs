@@ -1,7 +1,7 @@
 //! The sampled method on one merged interval: look at fixed times, prove nothing between.
 
-use super::eta::{Eta, Probe};
-use super::pair::{PairSettings, Span, Stop};
+use super::eta::Eta;
+use super::span::{PairSettings, Probe, Span, Stop};
 use super::Stats;
 
 /// Most looks per pair over the horizon, horizon / step: at about 0.1 µs a look, 10⁸ take

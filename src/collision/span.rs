@@ -1,0 +1,130 @@
+//! The vocabulary of searching one merged interval, shared by the pair loop and every method:
+//! the interval, a probe of it, the settings, and why a search stopped.
+
+use super::stats::Stats;
+use crate::geometry::{Vec2, WalkTolerances};
+use crate::motion::Pose;
+
+/// Settings of a pair check, in the scene's units.
+#[derive(Clone, Copy, Debug)]
+pub struct PairSettings {
+    /// δ: closer than this is a collision.
+    pub delta: f64,
+    /// Grazing allowance (length): an interval shorter than `time_tol` that can only be
+    /// shown to stay above δ − `grazing_tol` counts as a graze, not a contact.
+    pub grazing_tol: f64,
+    /// The first contact is reported no later than this after the true one.
+    pub time_tol: f64,
+    /// Start of the horizon: the sampled method looks at start + k·step.
+    pub start: f64,
+    /// Narrow-phase tolerances.
+    pub walk: WalkTolerances,
+    /// Work budget of the pair: evaluations of η (merged interval ends, bisections, looks).
+    pub max_work: u64,
+}
+
+impl PairSettings {
+    /// Whether the pair has done all the work it may (see [`PairSettings::max_work`]).
+    pub fn out_of_work(&self, stats: &Stats) -> bool {
+        stats.intervals + stats.bisections + stats.looks >= self.max_work
+    }
+}
+
+/// Why a search of a merged interval stopped before its end.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Stop {
+    /// A witness closer than δ, and the end of the certified prefix before it.
+    Contact(Probe, f64),
+    /// The work budget ran out; the prefix up to this time is certified.
+    OutOfWork(f64),
+}
+
+/// A pair probed at one time: both poses and η.
+#[derive(Clone, Copy, Debug)]
+pub struct Probe {
+    pub t: f64,
+    /// Position in the merged interval being checked: 0 at its start, 1 at its end.
+    pub u: f64,
+    pub pose_a: Pose,
+    pub pose_b: Pose,
+    /// Lower bound of the distance; exact whenever it is below δ.
+    pub eta: f64,
+    /// Whether `eta` is the exact distance (else the disc gap).
+    pub exact: bool,
+    /// When `exact`, the unit direction from A's closest point to B's (zero on overlap);
+    /// zero otherwise (the disc direction follows from the poses).
+    pub normal: Vec2,
+}
+
+/// One merged interval: both poses are linear in time between its ends.
+///
+/// Points inside it are addressed by a parameter u in [0, 1], not by time: the poses
+/// are interpolated between the ends directly, so bisection keeps its resolution even where
+/// time stamps are huge or an interval is a single unit in the last place long.
+pub(super) struct Span {
+    pub t0: f64,
+    pub t1: f64,
+    pub a: (Pose, Pose),
+    pub b: (Pose, Pose),
+}
+
+impl Span {
+    pub fn time(&self, u: f64) -> f64 {
+        if u == 1.0 {
+            self.t1
+        } else {
+            self.t0 + u * (self.t1 - self.t0)
+        }
+    }
+
+    /// The time at `u` and the error of that f64 against the exact t0 + u·(t1 − t0), by
+    /// error-free transformations (TwoSum, FMA): positive when the f64 is early.
+    fn time_and_error(&self, u: f64) -> (f64, f64) {
+        let two_sum = |x: f64, y: f64| {
+            let s = x + y;
+            let yy = s - x;
+            (s, (x - (s - yy)) + (y - yy))
+        };
+        let (d, d_err) = two_sum(self.t1, -self.t0);
+        let p = u * d;
+        let p_err = u.mul_add(d, -p);
+        let (t, t_err) = two_sum(self.t0, p);
+        (t, t_err + p_err + u * d_err)
+    }
+
+    /// The least f64 time not before the instant at `u`: a contact reported there is never
+    /// earlier than its witness, even where the time stamps are huge.
+    pub fn time_after(&self, u: f64) -> f64 {
+        match u {
+            0.0 => self.t0,
+            1.0 => self.t1,
+            _ => match self.time_and_error(u) {
+                (t, e) if e > 0.0 => t.next_up(),
+                (t, _) => t,
+            },
+        }
+    }
+
+    /// The greatest f64 time not after the instant at `u`: the end of a certified prefix.
+    pub fn time_before(&self, u: f64) -> f64 {
+        match u {
+            0.0 => self.t0,
+            1.0 => self.t1,
+            _ => match self.time_and_error(u) {
+                (t, e) if e < 0.0 => t.next_down(),
+                (t, _) => t,
+            },
+        }
+    }
+
+    pub fn poses(&self, u: f64) -> (Pose, Pose) {
+        (lerp(&self.a, u), lerp(&self.b, u))
+    }
+}
+
+fn lerp((p, q): &(Pose, Pose), u: f64) -> Pose {
+    Pose {
+        pos: p.pos + (q.pos - p.pos) * u,
+        theta: p.theta + (q.theta - p.theta) * u,
+    }
+}
