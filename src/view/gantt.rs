@@ -3,7 +3,7 @@
 
 use super::labels::{text_width, Placer};
 use super::model::{kind_colour, Mark, Model, RobotView, KINDS};
-use super::picture::{line, text};
+use super::picture::{line, page, text, titled};
 use svg::node::element::{Group, Polygon, Rectangle, Title};
 use svg::Document;
 
@@ -110,30 +110,13 @@ struct Chart<'a> {
 impl Chart<'_> {
     /// A white page with the title and the verdict.
     fn header(&self, height: f64) -> Document {
-        let (m, width) = (self.m, self.width);
-        Document::new()
-            .set("viewBox", (0.0, 0.0, width, height))
-            .set("width", width)
-            .set("height", height)
-            .set("font-family", "sans-serif")
-            .add(
-                Rectangle::new()
-                    .set("width", "100%")
-                    .set("height", "100%")
-                    .set("fill", "white"),
-            )
-            .add(
-                text(
-                    width / 2.0,
-                    24.0,
-                    &format!("{}: schedule", m.title),
-                    18.0,
-                    "#212121",
-                )
-                .set("text-anchor", "middle")
-                .set("font-weight", "bold"),
-            )
-            .add(text(width / 2.0, 44.0, &m.verdict, 13.0, "#424242").set("text-anchor", "middle"))
+        let title = format!("{}: schedule", self.m.title);
+        titled(
+            page(self.width, height),
+            self.width,
+            &title,
+            &self.m.verdict,
+        )
     }
 
     /// The time axis under the lanes, with grid lines and labels at 1, 2 or 5 times a power

@@ -121,25 +121,9 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
     };
     // Whole pixels: a page lays the picture out on them, and one unit stays one pixel.
     let height = (frame.height + legend_rows as f64 * LEGEND_ROW + 8.0).ceil();
-    let mut doc = Document::new()
-        .set("viewBox", (0.0, 0.0, WIDTH, height))
-        .set("width", WIDTH)
-        .set("height", height)
-        .set("font-family", "sans-serif")
-        .add(
-            Rectangle::new()
-                .set("width", "100%")
-                .set("height", "100%")
-                .set("fill", "white"),
-        );
+    let mut doc = page(WIDTH, height);
     if !animated {
-        doc = doc
-            .add(
-                text(WIDTH / 2.0, 24.0, &m.title, 18.0, "#212121")
-                    .set("text-anchor", "middle")
-                    .set("font-weight", "bold"),
-            )
-            .add(text(WIDTH / 2.0, 44.0, &m.verdict, 13.0, "#424242").set("text-anchor", "middle"));
+        doc = titled(doc, WIDTH, &m.title, &m.verdict);
     }
     let mut placer = Placer::new([0.0, HEADER, WIDTH, frame.height]);
     for o in &m.obstacles {
@@ -489,6 +473,31 @@ fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) 
 
 fn circle(x: f64, y: f64, r: f64) -> Circle {
     Circle::new().set("cx", x).set("cy", y).set("r", r)
+}
+
+/// A white page `width` × `height` pixels, one unit a pixel.
+pub(super) fn page(width: f64, height: f64) -> Document {
+    Document::new()
+        .set("viewBox", (0.0, 0.0, width, height))
+        .set("width", width)
+        .set("height", height)
+        .set("font-family", "sans-serif")
+        .add(
+            Rectangle::new()
+                .set("width", "100%")
+                .set("height", "100%")
+                .set("fill", "white"),
+        )
+}
+
+/// The title in bold and the verdict under it, centred at the top of a page `width` wide.
+pub(super) fn titled(doc: Document, width: f64, title: &str, verdict: &str) -> Document {
+    doc.add(
+        text(width / 2.0, 24.0, title, 18.0, "#212121")
+            .set("text-anchor", "middle")
+            .set("font-weight", "bold"),
+    )
+    .add(text(width / 2.0, 44.0, verdict, 13.0, "#424242").set("text-anchor", "middle"))
 }
 
 pub(super) fn line(x1: f64, y1: f64, x2: f64, y2: f64) -> Line {
