@@ -245,6 +245,20 @@ fn read_robot(
     names.claim(file, &r.name, &at, "robot")?;
     let shape = polygon(file, &r.name, &format!("{at}.shape"), &r.shape, warnings)?;
     let home = pose(&r.home).map_err(|reason| err(format!("{at}.home"), reason))?;
+    let robot = CellRobot {
+        name: r.name.clone(),
+        shape,
+        home,
+        max_speed: r.max_speed,
+        max_accel: r.max_accel,
+        max_turn_rate: r.max_turn_rate,
+    };
+    check_limits(file, &at, &robot)?;
+    Ok(robot)
+}
+
+/// The robot's limits positive and finite: a planner cannot time a move without them.
+pub(super) fn check_limits(file: &Path, at: &str, r: &CellRobot) -> Result<(), InputError> {
     for (field, value) in [
         ("max_speed", r.max_speed),
         ("max_accel", r.max_accel),
@@ -252,17 +266,15 @@ fn read_robot(
     ] {
         if !(value.is_finite() && value > 0.0) {
             let reason = format!("must be a positive number, got {value}");
-            return Err(err(format!("{at}.{field}"), reason));
+            return Err(InputError::new(
+                file,
+                Some(&r.name),
+                format!("{at}.{field}"),
+                reason,
+            ));
         }
     }
-    Ok(CellRobot {
-        name: r.name.clone(),
-        shape,
-        home,
-        max_speed: r.max_speed,
-        max_accel: r.max_accel,
-        max_turn_rate: r.max_turn_rate,
-    })
+    Ok(())
 }
 
 fn read_obstacle(
@@ -292,36 +304,72 @@ fn read_task(
     let err = |field: String, reason: String| InputError::new(file, Some(&t.name), field, reason);
     names.claim(file, &t.name, &at, "task")?;
     let pose = pose(&t.at).map_err(|reason| err(format!("{at}.at"), reason))?;
-    if !(t.duration.is_finite() && t.duration >= 0.0) {
-        let reason = format!("must be a non-negative number, got {}", t.duration);
-        return Err(err(format!("{at}.duration"), reason));
-    }
-    let allowed = match &t.robots {
-        None => (0..robot_index.len()).collect(),
-        Some(list) => {
-            let mut allowed = Vec::with_capacity(list.len());
-            for (i, name) in list.iter().enumerate() {
-                let Some(&r) = robot_index.get(name.as_str()) else {
-                    let reason = format!("no robot is named \"{name}\"");
-                    return Err(err(format!("{at}.robots[{i}]"), reason));
-                };
-                allowed.push(r);
-            }
-            allowed.sort_unstable();
-            allowed.dedup();
-            allowed
-        }
-    };
-    if allowed.is_empty() {
-        let reason = "no robot may do this task: the list is empty";
-        return Err(err(format!("{at}.robots"), reason.into()));
-    }
+    check_duration(file, &at, &t.name, t.duration)?;
+    let allowed = allowed_robots(
+        file,
+        &at,
+        &t.name,
+        t.robots.as_deref(),
+        robot_index.len(),
+        |name| robot_index.get(name).copied(),
+    )?;
     Ok(Task {
         name: t.name.clone(),
         at: pose,
         duration: t.duration,
         robots: allowed,
     })
+}
+
+/// The indices of the robots named in `list` (all `robots` when there is no list),
+/// increasing; `index` finds a robot by name.
+pub(super) fn allowed_robots<S: AsRef<str>>(
+    file: &Path,
+    at: &str,
+    task: &str,
+    list: Option<&[S]>,
+    robots: usize,
+    index: impl Fn(&str) -> Option<usize>,
+) -> Result<Vec<usize>, InputError> {
+    let err = |field: String, reason: String| InputError::new(file, Some(task), field, reason);
+    let Some(list) = list else {
+        return Ok((0..robots).collect());
+    };
+    let mut allowed = Vec::with_capacity(list.len());
+    for (i, name) in list.iter().enumerate() {
+        let name = name.as_ref();
+        let Some(r) = index(name) else {
+            let reason = format!("no robot is named \"{name}\"");
+            return Err(err(format!("{at}.robots[{i}]"), reason));
+        };
+        allowed.push(r);
+    }
+    allowed.sort_unstable();
+    allowed.dedup();
+    if allowed.is_empty() {
+        let reason = "no robot may do this task: the list is empty";
+        return Err(err(format!("{at}.robots"), reason.into()));
+    }
+    Ok(allowed)
+}
+
+/// A task's duration non-negative and finite.
+pub(super) fn check_duration(
+    file: &Path,
+    at: &str,
+    name: &str,
+    duration: f64,
+) -> Result<(), InputError> {
+    if duration.is_finite() && duration >= 0.0 {
+        return Ok(());
+    }
+    let reason = format!("must be a non-negative number, got {duration}");
+    Err(InputError::new(
+        file,
+        Some(name),
+        format!("{at}.duration"),
+        reason,
+    ))
 }
 
 /// Names already used, to refuse duplicates among robots, obstacles and tasks: homes and
@@ -331,22 +379,39 @@ struct Names(HashMap<String, String>);
 
 impl Names {
     fn claim(&mut self, file: &Path, name: &str, at: &str, kind: &str) -> Result<(), InputError> {
-        if name.is_empty() {
-            let reason = format!("a {kind} needs a non-empty name");
-            return Err(InputError::new(file, None, format!("{at}.name"), reason));
-        }
-        if let Some(first) = self.0.get(name) {
-            let reason = format!("the name is already used by {first}");
-            return Err(InputError::new(
-                file,
-                Some(name),
-                format!("{at}.name"),
-                reason,
-            ));
-        }
-        self.0.insert(name.to_owned(), format!("{kind} `{at}`"));
+        check_name(file, name, at, kind, self.0.get(name).map(String::as_str))?;
+        self.0.insert(name.to_owned(), owner(kind, at));
         Ok(())
     }
+}
+
+/// How a message names the owner of a name: robot `robots[0]`.
+pub(super) fn owner(kind: &str, at: &str) -> String {
+    format!("{kind} `{at}`")
+}
+
+/// Refuses an empty name, or one that `first` (its owner, as [`owner`] writes it) has.
+pub(super) fn check_name(
+    file: &Path,
+    name: &str,
+    at: &str,
+    kind: &str,
+    first: Option<&str>,
+) -> Result<(), InputError> {
+    if name.is_empty() {
+        let reason = format!("a {kind} needs a non-empty name");
+        return Err(InputError::new(file, None, format!("{at}.name"), reason));
+    }
+    if let Some(first) = first {
+        let reason = format!("the name is already used by {first}");
+        return Err(InputError::new(
+            file,
+            Some(name),
+            format!("{at}.name"),
+            reason,
+        ));
+    }
+    Ok(())
 }
 
 /// `[x, y]` or `[x, y, theta]`.

@@ -2,10 +2,11 @@
 //! code is the scene its file describes, and the verdict says what the report's fields say.
 
 use std::path::Path;
-use workcell::cell::parse_scene;
+use workcell::cell::{load_cell, parse_scene, Cell};
 use workcell::collision::{check, Body, CheckOptions, Method, Scene, Verdict};
 use workcell::geometry::{ConvexPolygon, PolygonWarning};
 use workcell::motion::{Pose, Trajectory};
+use workcell::wcp::{prepare, solve, SolveOptions};
 
 const SCENE: &str = r#"{"delta": 0.02, "robots": [
   {"name": "A", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
@@ -179,4 +180,99 @@ fn the_verdict_sums_up_the_report() {
     let v = agrees(&report);
     assert!(matches!(v, Verdict::Unresolved { .. }), "{v}");
     assert!(!v.is_certified_free() && v.contact().is_none());
+}
+
+/// `cell` rebuilt through `Cell::new` and the `add_*` methods, task robots by name.
+fn rebuilt(cell: &Cell) -> Cell {
+    let mut built = Cell::new(cell.delta).unwrap();
+    for r in &cell.robots {
+        built.add_robot(r.clone()).unwrap();
+    }
+    for o in &cell.obstacles {
+        built.add_obstacle(o.clone()).unwrap();
+    }
+    for t in &cell.tasks {
+        let names: Vec<&str> = t
+            .robots
+            .iter()
+            .map(|&r| cell.robots[r].name.as_str())
+            .collect();
+        // The file's rule: a task that any robot may do lists none.
+        let list = (names.len() < cell.robots.len()).then_some(names.as_slice());
+        built.add_task(&t.name, t.at, t.duration, list).unwrap();
+    }
+    built.validate().unwrap();
+    built
+}
+
+#[test]
+fn a_cell_built_in_code_is_the_cell_its_file_describes_and_solves_the_same() {
+    for name in ["feedback-cell.json", "four-robots-cell.json"] {
+        let loaded = load_cell(Path::new(&crate::common::shipped(name)))
+            .unwrap()
+            .cell;
+        let built = rebuilt(&loaded);
+        assert_eq!(
+            Cell {
+                file: loaded.file.clone(),
+                ..built.clone()
+            },
+            loaded,
+            "{name}"
+        );
+        let opts = SolveOptions::default();
+        let solve = |c: &Cell| solve(c, &prepare(c, &opts, &()).unwrap(), &opts, &()).unwrap();
+        let (a, b) = (solve(&loaded), solve(&built));
+        assert_eq!(
+            (a.routes, a.schedule.makespan),
+            (b.routes, b.schedule.makespan)
+        );
+    }
+}
+
+#[test]
+fn a_cell_built_in_code_is_refused_where_its_file_would_be() {
+    let loaded = load_cell(Path::new(&crate::common::shipped("feedback-cell.json")))
+        .unwrap()
+        .cell;
+    let robot = loaded.robots[0].clone();
+    // The same messages as the file reader's, for the same faults.
+    let mut cell = Cell::new(loaded.delta).unwrap();
+    cell.add_robot(robot.clone()).unwrap();
+    let e = cell
+        .add_task(&robot.name, robot.home, 1.0, None)
+        .unwrap_err();
+    assert_eq!(e.field, "tasks[0].name");
+    assert_eq!(e.reason, "the name is already used by robot `robots[0]`");
+    let e = cell.add_task("t", robot.home, -1.0, None).unwrap_err();
+    assert_eq!(
+        (e.field.as_str(), e.reason.as_str()),
+        ("tasks[0].duration", "must be a non-negative number, got -1")
+    );
+    let e = cell.add_task("t", robot.home, 1.0, Some(&[])).unwrap_err();
+    assert_eq!(e.field, "tasks[0].robots");
+    // What a file cannot hold and code can: a NaN pose.
+    let mut bad = robot.clone();
+    bad.name = "R9".into();
+    bad.home.theta = f64::NAN;
+    let e = cell.add_robot(bad).unwrap_err();
+    assert_eq!(
+        (e.body.as_deref(), e.field.as_str()),
+        (Some("R9"), "robots[1].home")
+    );
+    let e = cell
+        .add_task("t", Pose::new(f64::INFINITY, 0.0, 0.0), 1.0, None)
+        .unwrap_err();
+    assert_eq!(e.field, "tasks[0].at");
+    for delta in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert_eq!(Cell::new(delta).unwrap_err().field, "delta");
+    }
+    // Refused additions leave the cell as it was.
+    assert_eq!((cell.robots.len(), cell.tasks.len()), (1, 0));
+    // A second robot at the first one's home: found by `validate`, as by the file reader.
+    let mut twin = robot.clone();
+    twin.name = "R9".into();
+    cell.add_robot(twin).unwrap();
+    let e = cell.validate().unwrap_err();
+    assert_eq!(e.field, "robots[1].home");
 }
