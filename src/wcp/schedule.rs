@@ -336,6 +336,22 @@ impl BuildError {
     }
 
     /// Why, in words.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::legs::{default_legs, with_leg, Leg, Piece};
+    /// use workcell::wcp::{BuildError, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// // R2's first leg replaced by R1's move out of its home, far from R2.
+    /// let wrong = [Piece::Go { motion: store.get(0, 0, 1).unwrap(), scale: 1.0 }];
+    /// let legs = with_leg(&default_legs(2), 1, 0, Leg { wait: 0.0, pieces: Some(Arc::from(wrong)) });
+    /// let e = Schedule::build(&cell, &[vec![0], vec![1]], &legs, &store).unwrap_err();
+    /// assert!(matches!(e, BuildError::Discontinuous { robot: 1, leg: 0, .. }));
+    /// assert!(e.reason(&cell).starts_with("its move 0 is not continuous"));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn reason(&self, cell: &Cell) -> String {
         match self {
             BuildError::Move {

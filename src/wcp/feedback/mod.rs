@@ -97,6 +97,28 @@ impl Default for SolveOptions {
 
 /// Progress of a solve, for a progress bar. Called from the solving thread, except
 /// `move_planned`, which planning threads call.
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use std::sync::Mutex;
+/// use workcell::wcp::{prepare, solve, Collision, Progress, SolveOptions};
+/// /// Counts the moves planned and keeps each round's makespan.
+/// #[derive(Default)]
+/// struct Log { moves: AtomicUsize, rounds: Mutex<Vec<f64>> }
+/// impl Progress for Log {
+///     fn move_planned(&self) { self.moves.fetch_add(1, Ordering::Relaxed); }
+///     fn iteration(&self, _k: usize, makespan: f64, _c: Option<&Collision>) {
+///         self.rounds.lock().unwrap().push(makespan);
+///     }
+/// }
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let (opts, log) = (SolveOptions::default(), Log::default());
+/// let solved = solve(&cell, &prepare(&cell, &opts, &log)?, &opts, &log)?;
+/// assert!(log.moves.into_inner() > 0);
+/// // The last round checked is the final schedule.
+/// assert_eq!(log.rounds.into_inner().unwrap().last(), Some(&solved.schedule.makespan));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub trait Progress: Sync {
     /// Planning starts: `total` moves to plan and certify.
     fn planning(&self, _total: usize) {}
