@@ -108,8 +108,10 @@ pub fn scene_file_name(kind: Kind, seed: u64, index: u64) -> String {
 /// // Deterministic: the same arguments give the same scene, another index another one.
 /// assert_eq!(scene, generate_scene(Kind::Hall, 1, 0, 4));
 /// assert_ne!(scene, generate_scene(Kind::Hall, 1, 1, 4));
-/// let report = check(&scene, &CheckOptions::default());
-/// assert!(report.verdict().is_certified_free() || report.verdict().contact().is_some());
+/// // Kinds with a known verdict: a tunnelling scene always collides, a near miss never.
+/// let opts = CheckOptions::default();
+/// assert!(check(&generate_scene(Kind::Tunnelling, 1, 0, 0), &opts).verdict().contact().is_some());
+/// assert!(check(&generate_scene(Kind::NearMiss, 1, 0, 0), &opts).verdict().is_certified_free());
 /// ```
 pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene {
     let kind_no = Kind::ALL.iter().position(|k| *k == kind).unwrap() as u64;
