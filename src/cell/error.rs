@@ -35,6 +35,18 @@ impl InputError {
 impl InputError {
     /// The same error about `file`, when it names none yet: the library's checks of
     /// arguments know no file, the command line that passed them does.
+    ///
+    /// ```
+    /// use workcell::collision::{validate, CheckOptions, Scene};
+    /// use std::path::Path;
+    /// let opts = CheckOptions { delta: Some(-1.0), ..CheckOptions::default() };
+    /// let e = validate(&Scene::new(0.01)?, &opts).unwrap_err();
+    /// assert_eq!(e.file, Path::new("")); // the library knows no file
+    /// let e = e.in_file("scene.json".as_ref());
+    /// assert!(e.to_string().starts_with("scene.json: "), "{e}");
+    /// assert_eq!(e.in_file("other.json".as_ref()).file, Path::new("scene.json")); // kept
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn in_file(self, file: &std::path::Path) -> Self {
         if self.file.as_os_str().is_empty() {
             InputError {

@@ -58,6 +58,24 @@ pub struct PrimitiveSpec {
 }
 
 /// Reads the `legs` list of a solve result, for the routes read from the same file.
+///
+/// ```
+/// use workcell::cell::{load_cell, parse_legs, PieceSpec};
+/// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let routes = [vec![0, 2], vec![3, 1]];
+/// // R2 pauses 1.5 on its way out of home (move 0).
+/// let legs = serde_json::json!([{"robot": "R2", "move": 0, "pieces": [
+///     {"go": {"primitives": [{"path": [[9, 3], [9, 4]], "theta": 0, "turn": 0}], "scale": 1}},
+///     {"hold": 1.5, "reason": "pause"}]}]);
+/// let specs = parse_legs(&legs, "result.json".as_ref(), &cell, &routes)?;
+/// assert_eq!((specs[0].robot, specs[0].leg), (1, 0));
+/// assert_eq!(specs[0].pieces[1], PieceSpec::Hold { duration: 1.5, park: false });
+/// // R2 has three moves (out, between its tasks, home): no move 3.
+/// let bad = serde_json::json!([{"robot": "R2", "move": 3, "pieces": [{"hold": 1}]}]);
+/// let e = parse_legs(&bad, "result.json".as_ref(), &cell, &routes).unwrap_err();
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("R2"), "legs[0].move"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn parse_legs(
     list: &Value,
     file: &Path,

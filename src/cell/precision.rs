@@ -69,6 +69,25 @@ pub(crate) fn check_shape_repairs(
 /// Refuses a scene whose time stamps f64 spaces more coarsely than the time tolerance
 /// `time_tol` allows ([`MIN_TIME_TOL_OVER_ULP`]): the reported times could not be trusted
 /// to it. The message names the latest time stamp (in magnitude).
+///
+/// ```
+/// use workcell::cell::check_time_resolution;
+/// use workcell::collision::{Body, Scene};
+/// use workcell::geometry::ConvexPolygon;
+/// use workcell::motion::{Pose, Trajectory};
+/// let at = |t: f64| -> Result<Scene, Box<dyn std::error::Error>> {
+///     let path = Trajectory::from_poses([(t, Pose::new(0.0, 0.0, 0.0)), (t + 1.0, Pose::new(1.0, 0.0, 0.0))])?;
+///     let mut scene = Scene::new(0.01)?;
+///     scene.add(Body::robot("R1", ConvexPolygon::rectangle(1.0, 1.0)?, path))?;
+///     Ok(scene)
+/// };
+/// let file = "scene.json".as_ref();
+/// assert!(check_time_resolution(&at(0.0)?, 1e-9, file).is_ok());
+/// // At 10¹⁵ s, f64 spaces times 0.125 apart: far coarser than 10⁻⁹.
+/// let e = check_time_resolution(&at(1e15)?, 1e-9, file).unwrap_err();
+/// assert_eq!(e.body.as_deref(), Some("R1"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn check_time_resolution(scene: &Scene, time_tol: f64, file: &Path) -> Result<(), InputError> {
     let (start, end) = scene.horizon();
     if end == start {
@@ -105,6 +124,25 @@ pub fn check_time_resolution(scene: &Scene, time_tol: f64, file: &Path) -> Resul
 /// shapes were cleaned up by more than a sliver of δ ([`MAX_REPAIR_SHIFT_OVER_DELTA`]), or
 /// whose horizon is longer than f64 holds, and a δ that is not a positive number. Fields are
 /// named as in the scene file (robots first, then obstacles, in file order).
+///
+/// ```
+/// use workcell::cell::check_precision;
+/// use workcell::collision::{Body, Scene};
+/// use workcell::geometry::ConvexPolygon;
+/// let far = |x: f64| -> Result<Scene, Box<dyn std::error::Error>> {
+///     let wall = ConvexPolygon::from_vertices(&[[x, 0.0], [x + 1.0, 0.0], [x + 1.0, 1.0], [x, 1.0]])?;
+///     let mut scene = Scene::new(0.01)?;
+///     scene.add(Body::obstacle("wall", &wall))?;
+///     Ok(scene)
+/// };
+/// let file = "scene.json".as_ref();
+/// assert!(check_precision(&far(1e6)?, 0.01, file).is_ok());
+/// // 10¹² is more than 2³⁸ δ: f64 could not resolve δ there.
+/// let e = check_precision(&far(1e12)?, 0.01, file).unwrap_err();
+/// assert_eq!(e.body.as_deref(), Some("wall"));
+/// assert!(check_precision(&far(0.0)?, f64::NAN, file).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), InputError> {
     crate::collision::check_delta(delta).map_err(|e| e.in_file(file))?;
     let limit = MAX_COORDINATE_OVER_DELTA * delta;

@@ -7,6 +7,16 @@ use serde_json::{json, Value};
 
 /// The scene as a JSON document: robots with their body-frame shapes and full samples
 /// (`t`, `x`, `y`, `vx`, `vy`, `theta`, `omega`), obstacles in world coordinates.
+///
+/// ```
+/// use workcell::cell::{load_scene, parse_scene, scene_document};
+/// let scene = load_scene(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/near-miss.json").as_ref())?.scene;
+/// let doc = scene_document(&scene);
+/// assert_eq!(doc["robots"][0]["trajectory"][0].as_object().unwrap().len(), 7); // t, x, y, vx, vy, theta, omega
+/// // Written and read back: the same scene.
+/// assert_eq!(parse_scene(&doc.to_string(), "copy.json".as_ref())?.scene, scene);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn scene_document(scene: &Scene) -> Value {
     let mut robots = Vec::new();
     let mut obstacles = Vec::new();

@@ -32,6 +32,17 @@ pub struct Wait {
 }
 
 /// Reads the sequences at `path` against `cell`: see [`parse_sequences`].
+///
+/// ```
+/// use workcell::cell::{load_cell, load_sequences};
+/// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let path = std::env::temp_dir().join(format!("workcell-doc-{}-seq.json", std::process::id()));
+/// std::fs::write(&path, r#"{"R1": ["weld-3", "weld-1"], "R2": ["weld-4", "weld-2"]}"#)?;
+/// let sequences = load_sequences(&path, &cell);
+/// std::fs::remove_file(&path)?;
+/// assert_eq!(sequences?.routes, [vec![2, 0], vec![3, 1]]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
     parse_sequences(&super::reading::read_file(path)?, path, cell)
 }
@@ -47,12 +58,37 @@ const NOT_SEQUENCES: &str = "expected an object mapping robot names to lists of 
 ///
 /// A whole result also brings its `waits` (`[{"robot", "before_move", "duration"}]`) and
 /// `legs` (see [`super::parse_legs`]), so that the schedule is the one `solve` certified.
+///
+/// ```
+/// use workcell::cell::{load_cell, parse_sequences};
+/// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let file = "seq.json".as_ref();
+/// // R2 left out: it does no task.
+/// let s = parse_sequences(r#"{"R1": ["weld-2", "weld-1", "weld-3", "weld-4"]}"#, file, &cell)?;
+/// assert_eq!(s.routes, [vec![1, 0, 2, 3], vec![]]);
+/// assert!(s.waits.is_empty() && s.legs.is_empty());
+/// let e = parse_sequences(r#"{"R1": ["weld-1", "weld-2", "weld-3"]}"#, file, &cell).unwrap_err();
+/// assert!(e.reason.contains("weld-4"), "{e}"); // a task left out
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn parse_sequences(text: &str, file: &Path, cell: &Cell) -> Result<Sequences, InputError> {
     parse(text, file, cell, "sequences")
 }
 
 /// Reads the collision-blind sequences of the `solve --json` result at `path` (its
 /// `blind_sequences`): see [`parse_blind_sequences`].
+///
+/// ```
+/// use workcell::cell::{load_blind_sequences, load_cell};
+/// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let path = std::env::temp_dir().join(format!("workcell-doc-{}-blind.json", std::process::id()));
+/// std::fs::write(&path, r#"{"makespan": 15.7, "sequences": {"R1": ["weld-1", "weld-2"], "R2": ["weld-3", "weld-4"]},
+///     "blind_sequences": {"R1": ["weld-1"], "R2": ["weld-2", "weld-3", "weld-4"]}}"#)?;
+/// let blind = load_blind_sequences(&path, &cell);
+/// std::fs::remove_file(&path)?;
+/// assert_eq!(blind?.routes, [vec![0], vec![1, 2, 3]]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn load_blind_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError> {
     parse_blind_sequences(&super::reading::read_file(path)?, path, cell)
 }
@@ -61,6 +97,18 @@ pub fn load_blind_sequences(path: &Path, cell: &Cell) -> Result<Sequences, Input
 /// `blind_sequences` as [`parse_sequences`] reads `sequences`, without waits or changed
 /// legs (they belong to the final schedule). Refused as there, and when `text` is not a
 /// whole result or has no `blind_sequences` (an `evaluate` result has none).
+///
+/// ```
+/// use workcell::cell::{load_cell, parse_blind_sequences};
+/// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let file = "result.json".as_ref();
+/// let result = r#"{"makespan": 15.7, "sequences": {"R1": ["weld-1", "weld-2"], "R2": ["weld-3", "weld-4"]},
+///     "blind_sequences": {"R1": ["weld-2", "weld-1"], "R2": ["weld-3", "weld-4"]}}"#;
+/// assert_eq!(parse_blind_sequences(result, file, &cell)?.routes, [vec![1, 0], vec![2, 3]]);
+/// // Plain sequences are not a solve result: they have no blind ones.
+/// assert!(parse_blind_sequences(r#"{"R1": ["weld-1"]}"#, file, &cell).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn parse_blind_sequences(
     text: &str,
     file: &Path,

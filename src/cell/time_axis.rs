@@ -18,6 +18,14 @@ pub const TASK_LENGTH_TOL: f64 = 1e-6;
 /// Whether a span of `length` that starts at `start` (or earlier) keeps its length on the
 /// f64 time axis to within [`TASK_LENGTH_TOL`]: rounding its end moves it by at most half
 /// a unit in the last place of `start + length`. A zero length is an instant and is kept.
+///
+/// ```
+/// use workcell::cell::keeps_length;
+/// assert!(keeps_length(100.0, 1.5));
+/// assert!(keeps_length(1e17, 0.0)); // an instant
+/// // At 10¹⁷ s, f64 spaces times 16 s apart: a 1.5 s task cannot keep its length.
+/// assert!(!keeps_length(1e17, 1.5));
+/// ```
 pub fn keeps_length(start: f64, length: f64) -> bool {
     length == 0.0 || 0.5 * (start + length) * f64::EPSILON <= TASK_LENGTH_TOL * length
 }

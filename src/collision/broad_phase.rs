@@ -96,6 +96,18 @@ impl Aabb {
 /// Conservative: every pair left out stays at least `delta` apart at all times of the
 /// horizon. Nothing is left out on non-finite input (a NaN δ, a pose or a box that is not
 /// finite).
+///
+/// ```
+/// use workcell::collision::candidate_pairs;
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/paper-fig12a.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let all = scene.pairs();
+/// let near = candidate_pairs(&scene, scene.delta);
+/// assert!(near.len() <= all.len() && near.iter().all(|p| all.contains(p)));
+/// // With a δ as large as the hall, no pair can be left out.
+/// assert_eq!(candidate_pairs(&scene, 1e9), all);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn candidate_pairs(scene: &Scene, delta: f64) -> Vec<(usize, usize)> {
     // Handing a few robots to the thread pool costs more than it saves.
     candidates(scene, delta, scene.robot_count() >= PARALLEL_MIN_ROBOTS)

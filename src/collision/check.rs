@@ -68,6 +68,14 @@ pub struct CheckOptions {
 impl CheckOptions {
     /// The absolute time tolerance used on a scene of this horizon: `time_tol`, else
     /// [`DEFAULT_TIME_TOL_OVER_HORIZON`] of its length.
+    ///
+    /// ```
+    /// use workcell::collision::{CheckOptions, DEFAULT_TIME_TOL_OVER_HORIZON};
+    /// let default = CheckOptions::default();
+    /// assert_eq!(default.time_tol_for((10.0, 30.0)), DEFAULT_TIME_TOL_OVER_HORIZON * 20.0);
+    /// let given = CheckOptions { time_tol: Some(1e-6), ..default };
+    /// assert_eq!(given.time_tol_for((10.0, 30.0)), 1e-6);
+    /// ```
     pub fn time_tol_for(&self, (start, end): (f64, f64)) -> f64 {
         self.time_tol
             .unwrap_or(DEFAULT_TIME_TOL_OVER_HORIZON * (end - start))

@@ -27,6 +27,21 @@ pub struct PeerReport {
 
 /// Checks `pairs` of `scene` at `delta` with `cast_shapes_nonlinear`, in parallel, each pair
 /// stopping at its first impact and no pair looking past the earliest impact found.
+///
+/// ```
+/// use workcell::collision::{check, check_with_parry, CheckOptions};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let peer = check_with_parry(&scene, &scene.pairs(), scene.delta);
+/// let ours = check(&scene, &CheckOptions::default());
+/// // Both find the needle passing through the block, at about the same time.
+/// let (time, bodies) = peer.first_contact.expect("a contact");
+/// let verdict = ours.verdict();
+/// let contact = verdict.contact().expect("a contact");
+/// assert_eq!(bodies, contact.bodies);
+/// assert!((time - contact.time).abs() < 1e-3);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn check_with_parry(scene: &Scene, pairs: &[(usize, usize)], delta: f64) -> PeerReport {
     let horizon = scene.horizon();
     let limit = SharedLimit::new();

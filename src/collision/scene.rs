@@ -167,6 +167,19 @@ impl Scene {
     }
 
     /// Earliest and latest sample time of any robot; `(0, 0)` without robots.
+    ///
+    /// ```
+    /// use workcell::collision::{Body, Scene};
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let path = |t0: f64, t1: f64| Trajectory::from_poses([(t0, Pose::new(0.0, 0.0, 0.0)), (t1, Pose::new(1.0, 0.0, 0.0))]);
+    /// let mut scene = Scene::new(0.01)?;
+    /// assert_eq!(scene.horizon(), (0.0, 0.0));
+    /// scene.add(Body::robot("A", square.clone(), path(2.0, 5.0)?))?.add(Body::robot("B", square, path(1.0, 3.0)?))?;
+    /// assert_eq!(scene.horizon(), (1.0, 5.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn horizon(&self) -> (f64, f64) {
         let times = || self.bodies.iter().flat_map(|b| b.motion.times());
         match times().next() {
@@ -177,6 +190,22 @@ impl Scene {
 
     /// The pairs to check, in report order: robot-robot pairs, then robot-obstacle pairs.
     /// Obstacle pairs never change and are not checked.
+    ///
+    /// ```
+    /// use workcell::collision::{Body, Scene};
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let still = |x: f64| Trajectory::from_poses([(0.0, Pose::new(x, 0.0, 0.0))]);
+    /// let mut scene = Scene::new(0.01)?;
+    /// let wall = ConvexPolygon::from_vertices(&[[8.0, 8.0], [9.0, 8.0], [9.0, 9.0], [8.0, 9.0]])?;
+    /// scene.add(Body::obstacle("wall", &wall))?;
+    /// scene.add(Body::robot("A", square.clone(), still(0.0)?))?.add(Body::robot("B", square, still(3.0)?))?;
+    /// // Bodies: A, B, wall (robots first). A-B, then each robot with the wall.
+    /// assert_eq!(scene.pairs(), [(0, 1), (0, 2), (1, 2)]);
+    /// assert_eq!(scene.pair_count(), 3);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn pairs(&self) -> Vec<(usize, usize)> {
         let robots: Vec<usize> = (0..self.bodies.len())
             .filter(|&i| self.bodies[i].is_robot())

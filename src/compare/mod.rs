@@ -74,6 +74,15 @@ impl FromStr for Contender {
 
 /// The contenders compared by default: every method, sampling at four steps, and parry when
 /// it is built in.
+///
+/// ```
+/// use workcell::collision::Method;
+/// use workcell::compare::{default_contenders, Contender};
+/// let all = default_contenders();
+/// assert_eq!(all[0], Contender::Ours(Method::DEFAULT));
+/// assert!(all.contains(&Contender::Ours(Method::Sampled { step: 0.01 })));
+/// assert_eq!(all.contains(&Contender::Parry), cfg!(feature = "parry-peer"));
+/// ```
 pub fn default_contenders() -> Vec<Contender> {
     let mut all = vec![
         Contender::Ours(Method::DEFAULT),
@@ -150,6 +159,18 @@ pub struct NamedScene {
 
 /// Refuses a contender that cannot check one of the scenes, as [`validate`] says (a
 /// `sampled` step too fine for its horizon), naming the scene as the file.
+///
+/// ```
+/// use workcell::compare::{validate_contenders, Contender, NamedScene};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let scenes = [NamedScene { name: "tunnelling.json".into(), scene }];
+/// let fine: Contender = "sampled:1e-12".parse()?; // 10¹² looks over its 1 s horizon
+/// let e = validate_contenders(&scenes, &[fine]).unwrap_err();
+/// assert_eq!(e.file, std::path::Path::new("tunnelling.json"));
+/// assert!(validate_contenders(&scenes, &["sampled:0.01".parse()?]).is_ok());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn validate_contenders(
     scenes: &[NamedScene],
     contenders: &[Contender],
@@ -172,6 +193,21 @@ pub fn validate_contenders(
 /// Runs every contender on every scene; `progress` is told after each scene. A method that
 /// cannot check a scene ([`validate`]: a `sampled` step too fine for its horizon) counts
 /// that scene as unsupported, as parry does for shapes it refuses.
+///
+/// ```
+/// use workcell::compare::{compare, NamedScene};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let scenes = [NamedScene { name: "tunnelling.json".into(), scene }];
+/// // The needle crosses the block between two samples: sampling once a second misses it.
+/// let contenders = ["adaptive".parse()?, "sampled:1".parse()?];
+/// let mut told = 0;
+/// let result = compare(&scenes, &contenders, |_| told += 1);
+/// assert_eq!((result.scenes, result.colliding, told), (1, 1, 1));
+/// assert_eq!((result.methods[0].method.as_str(), result.methods[0].missed), ("adaptive", 0));
+/// assert_eq!((result.methods[1].method.as_str(), result.methods[1].missed), ("sampled:1", 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn compare(
     scenes: &[NamedScene],
     contenders: &[Contender],

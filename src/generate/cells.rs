@@ -60,11 +60,24 @@ pub struct CellRequest {
 impl CellRequest {
     /// The default number of fixtures for `tasks` tasks: 3 per 50 tasks (30 for 500, 120
     /// for 2,000), as in the issue's cells.
+    ///
+    /// ```
+    /// use workcell::generate::CellRequest;
+    /// assert_eq!(CellRequest::default_fixtures(500), 30);
+    /// assert_eq!(CellRequest::default_fixtures(10), 0);
+    /// ```
     pub fn default_fixtures(tasks: usize) -> usize {
         tasks * 3 / 50
     }
 
     /// Refuses sizes out of range, with the flag to blame.
+    ///
+    /// ```
+    /// use workcell::generate::CellRequest;
+    /// assert!(CellRequest { robots: 2, tasks: 10, fixtures: 1 }.check().is_ok());
+    /// let e = CellRequest { robots: 0, tasks: 10, fixtures: 1 }.check().unwrap_err();
+    /// assert!(e.starts_with("--robots"), "{e}");
+    /// ```
     pub fn check(&self) -> Result<(), String> {
         if !(1..=MAX_ROBOTS).contains(&self.robots) {
             return Err(format!(
@@ -90,6 +103,12 @@ impl CellRequest {
 
 /// The file name of cell `index` of a run: `cell-<R>r-<N>t-<F>f-<seed>-<index>-cell.json`
 /// (the `-cell.json` ending keeps it out of `compare`'s folders of scenes).
+///
+/// ```
+/// use workcell::generate::{cell_file_name, CellRequest};
+/// let req = CellRequest { robots: 3, tasks: 40, fixtures: 2 };
+/// assert_eq!(cell_file_name(&req, 0, 5), "cell-3r-40t-2f-0-5-cell.json");
+/// ```
 pub fn cell_file_name(req: &CellRequest, seed: u64, index: u64) -> String {
     format!(
         "cell-{}r-{}t-{}f-{seed}-{index}-cell.json",
@@ -99,6 +118,19 @@ pub fn cell_file_name(req: &CellRequest, seed: u64, index: u64) -> String {
 
 /// Cell `index` of a run with `seed`, as a cell document (contract section 3), or why the
 /// request cannot be met.
+///
+/// ```
+/// use workcell::cell::parse_cell;
+/// use workcell::generate::{generate_cell, CellRequest};
+/// let req = CellRequest { robots: 3, tasks: 12, fixtures: 2 };
+/// let doc = generate_cell(&req, 0, 0)?;
+/// // A valid cell document of the requested size.
+/// let cell = parse_cell(&doc.to_string(), "generated.json".as_ref())?.cell;
+/// assert_eq!((cell.robots.len(), cell.tasks.len(), cell.obstacles.len()), (3, 12, 2));
+/// assert_eq!(doc, generate_cell(&req, 0, 0)?);
+/// assert!(generate_cell(&CellRequest { robots: 0, ..req }, 0, 0).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn generate_cell(req: &CellRequest, seed: u64, index: u64) -> Result<Value, String> {
     req.check()?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);

@@ -63,6 +63,12 @@ impl ConflictKind {
     }
 
     /// The family of a name, if it is one.
+    ///
+    /// ```
+    /// use workcell::generate::ConflictKind;
+    /// assert_eq!(ConflictKind::from_name("doorway"), Some(ConflictKind::Doorway));
+    /// assert_eq!(ConflictKind::from_name("door"), None);
+    /// ```
     pub fn from_name(name: &str) -> Option<ConflictKind> {
         ConflictKind::ALL.into_iter().find(|k| k.name() == name)
     }
@@ -70,11 +76,26 @@ impl ConflictKind {
 
 /// The file name of cell `index` of a run: `<family>-<seed>-<index>-cell.json` (the
 /// `-cell.json` ending keeps it out of `compare`'s folders of scenes).
+///
+/// ```
+/// use workcell::generate::{conflict_file_name, ConflictKind};
+/// assert_eq!(conflict_file_name(ConflictKind::HomeInWay, 2, 0), "home-in-way-2-0-cell.json");
+/// ```
 pub fn conflict_file_name(kind: ConflictKind, seed: u64, index: u64) -> String {
     format!("{}-{seed}-{index}-cell.json", kind.name())
 }
 
 /// Cell `index` of family `kind` for `seed`, as a JSON document in the cell format.
+///
+/// ```
+/// use workcell::cell::parse_cell;
+/// use workcell::generate::{generate_conflict_cell, ConflictKind};
+/// let doc = generate_conflict_cell(ConflictKind::Doorway, 0, 1);
+/// let cell = parse_cell(&doc.to_string(), "doorway.json".as_ref())?.cell;
+/// // 4 + k mod 5 robots, two tasks inside the room each.
+/// assert_eq!((cell.robots.len(), cell.tasks.len()), (5, 10));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn generate_conflict_cell(kind: ConflictKind, seed: u64, index: u64) -> Value {
     let kind_no = ConflictKind::ALL.iter().position(|k| *k == kind).unwrap() as u64;
     // Offset from the scene kinds' numbers, so that no scene and cell share a stream.

@@ -10,6 +10,19 @@ use super::{Feature, FeaturePair, Posed, Vec2};
 /// normals and gives distance 0. Otherwise the distance is the smallest vertex-to-edge
 /// distance in either direction, which for disjoint convex polygons is the true distance.
 /// `steps` is 0 and `fell_back` false in the result.
+///
+/// ```
+/// use workcell::geometry::{brute_force_distance, ConvexPolygon, Posed, Vec2};
+/// let square = ConvexPolygon::rectangle(2.0, 2.0)?;
+/// // Centres 5 apart, corners 3 apart along x.
+/// let d = brute_force_distance(&Posed::new(&square, 0.0, 0.0, 0.0), &Posed::new(&square, 5.0, 0.0, 0.0));
+/// assert_eq!(d.distance, 3.0);
+/// assert_eq!((d.point_a.x, d.point_b.x), (1.0, 4.0));
+/// let overlap = brute_force_distance(&Posed::new(&square, 0.0, 0.0, 0.0), &Posed::new(&square, 1.0, 1.0, 0.7));
+/// assert_eq!(overlap.distance, 0.0);
+/// # let _: Vec2 = d.point_a;
+/// # Ok::<(), workcell::geometry::PolygonError>(())
+/// ```
 pub fn brute_force_distance(a: &Posed, b: &Posed) -> Distance {
     let va: Vec<Vec2> = (0..a.len()).map(|i| a.vertex(i)).collect();
     let vb: Vec<Vec2> = (0..b.len()).map(|i| b.vertex(i)).collect();

@@ -72,6 +72,22 @@ enum Step {
 /// vertices along the line between the centres. The result is exact up to rounding: the
 /// walk stops only at a pair certified by the Voronoi test (within `tol.feature_tol`), at an
 /// intersection of features (distance 0), or through the exact fallback.
+///
+/// ```
+/// use workcell::geometry::{brute_force_distance, closest_features, ConvexPolygon, Posed, WalkTolerances};
+/// let square = ConvexPolygon::rectangle(2.0, 2.0)?;
+/// let tol = WalkTolerances::default();
+/// let a = Posed::new(&square, 0.0, 0.0, 0.0);
+/// let b = Posed::new(&square, 4.0, 3.0, 0.4);
+/// let d = closest_features(&a, &b, None, &tol);
+/// assert!((d.distance - brute_force_distance(&a, &b).distance).abs() < 1e-12);
+/// // Warm-started from its own answer on a slightly moved pair: the walk has little to do.
+/// let moved = Posed::new(&square, 4.0, 3.1, 0.41);
+/// let again = closest_features(&a, &moved, Some(d.features), &tol);
+/// assert!(again.steps <= d.steps);
+/// assert!((again.distance - brute_force_distance(&a, &moved).distance).abs() < 1e-12);
+/// # Ok::<(), workcell::geometry::PolygonError>(())
+/// ```
 pub fn closest_features(
     a: &Posed,
     b: &Posed,

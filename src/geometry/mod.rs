@@ -25,6 +25,12 @@ pub use posed::Posed;
 pub type Vec2 = nalgebra::Vector2<f64>;
 
 /// The z component of the cross product of two plane vectors.
+///
+/// ```
+/// use workcell::geometry::{cross, Vec2};
+/// let (x, y) = (Vec2::new(1.0, 0.0), Vec2::new(0.0, 2.0));
+/// assert_eq!((cross(&x, &y), cross(&y, &x)), (2.0, -2.0)); // positive: y lies counter-clockwise of x
+/// ```
 #[inline]
 pub fn cross(a: &Vec2, b: &Vec2) -> f64 {
     a.x * b.y - a.y * b.x

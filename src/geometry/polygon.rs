@@ -337,6 +337,15 @@ impl ConvexPolygon {
 
     /// The same polygon with `offset` subtracted from every vertex: its frame origin moves to
     /// `offset`. Obstacles use it to centre their bounding disc on their own centroid.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, Vec2};
+    /// let world = ConvexPolygon::from_vertices(&[[4.0, 2.0], [6.0, 2.0], [6.0, 4.0], [4.0, 4.0]])?;
+    /// let centred = world.translated(&world.centroid());
+    /// assert_eq!(centred.centroid(), Vec2::new(0.0, 0.0));
+    /// assert_eq!(centred.vertices()[0], Vec2::new(-1.0, -1.0));
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
     pub fn translated(&self, offset: &Vec2) -> Self {
         Self {
             repair: self.repair,

@@ -17,6 +17,15 @@ pub struct Posed<'a> {
 
 impl<'a> Posed<'a> {
     /// Places `shape` with its body origin at `(x, y)`, rotated by `theta` radians.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, Posed, Vec2};
+    /// let bar = ConvexPolygon::from_vertices(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]])?;
+    /// let placed = Posed::new(&bar, 10.0, 0.0, std::f64::consts::FRAC_PI_2); // a quarter turn
+    /// assert_eq!(placed.center(), Vec2::new(10.0, 0.0));
+    /// assert!((placed.vertex(1) - Vec2::new(10.0, 2.0)).norm() < 1e-12); // (2, 0) turned to (0, 2)
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
     pub fn new(shape: &'a ConvexPolygon, x: f64, y: f64, theta: f64) -> Self {
         Posed {
             shape,

@@ -20,6 +20,18 @@ pub enum BoundKind {
 /// With [`BoundKind::Rigorous`], no point of the body moves farther than λ during
 /// [ta, tb], and over a sub-interval of relative length s no farther than s·λ (the motion is
 /// linear, so the bound is additive). Length units are the scene's; `radius` is Rmax.
+///
+/// ```
+/// use workcell::motion::{lambda, BoundKind, Motion, Pose, Trajectory};
+/// let path = Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0)), (2.0, Pose::new(3.0, 4.0, 0.5))])?;
+/// let motion = Motion::Sampled(path);
+/// let (a, b) = (motion.pose_at(0.0), motion.pose_at(2.0));
+/// // A body of radius 2: G moves 5, its farthest point 2·0.5 more by the turn.
+/// assert_eq!(lambda(BoundKind::Rigorous, &motion, 2.0, (0.0, &a), (2.0, &b)), 6.0);
+/// let fixed = Motion::Fixed(Pose::new(1.0, 1.0, 0.0));
+/// assert_eq!(lambda(BoundKind::Rigorous, &fixed, 2.0, (0.0, &a), (2.0, &b)), 0.0);
+/// # Ok::<(), workcell::motion::TrajectoryError>(())
+/// ```
 #[inline]
 pub fn lambda(
     kind: BoundKind,

@@ -223,6 +223,15 @@ impl Trajectory {
     ///
     /// Interpolates by the fraction of the time step, never by a rate Δpos/Δt: a step of
     /// 1e-310 would overflow the rate and turn the poses into NaN.
+    ///
+    /// ```
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let path = Trajectory::from_poses([(1.0, Pose::new(0.0, 0.0, 0.0)), (3.0, Pose::new(4.0, 2.0, 1.0))])?;
+    /// assert_eq!(path.pose_at(2.0), Pose::new(2.0, 1.0, 0.5));
+    /// assert_eq!(path.pose_at(0.0), Pose::new(0.0, 0.0, 0.0)); // before the first sample: the first pose
+    /// assert_eq!(path.pose_at(9.0), Pose::new(4.0, 2.0, 1.0));
+    /// # Ok::<(), workcell::motion::TrajectoryError>(())
+    /// ```
     pub fn pose_at(&self, t: f64) -> Pose {
         self.pose_after(self.samples.partition_point(|s| s.t <= t), t)
     }
@@ -248,6 +257,15 @@ impl Trajectory {
 
     /// The given velocities at `t`, interpolated linearly between samples; zero outside the
     /// samples, where the robot rests. Only the paper's bound uses them.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let path = Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0)), (2.0, Pose::new(4.0, 0.0, 1.0))])?;
+    /// assert_eq!(path.velocity_at(1.0), (Vec2::new(2.0, 0.0), 0.5));
+    /// assert_eq!(path.velocity_at(3.0), (Vec2::zeros(), 0.0)); // at rest after the last sample
+    /// # Ok::<(), workcell::motion::TrajectoryError>(())
+    /// ```
     pub fn velocity_at(&self, t: f64) -> (Vec2, f64) {
         let s = &self.samples;
         match self.segment(t) {
@@ -267,6 +285,15 @@ impl Trajectory {
     /// Velocity and angular velocity consistent with the interpolated positions: the
     /// average of the slopes of the two segments that meet at each sample. For samples
     /// whose velocities the input left out.
+    ///
+    /// ```
+    /// use workcell::motion::{Pose, Sample, Trajectory};
+    /// // Slopes 2 then 4 in x (per time unit) meet at the middle sample: its velocity is 3.
+    /// let at = |t, x, theta| Sample::at(t, Pose::new(x, 0.0, theta));
+    /// let samples = [at(0.0, 0.0, 0.0), at(1.0, 2.0, 0.0), at(2.0, 6.0, 1.0)];
+    /// let (vel, omega) = Trajectory::derived_velocity(&samples, 1);
+    /// assert_eq!((vel.x, vel.y, omega), (3.0, 0.0, 0.5));
+    /// ```
     pub fn derived_velocity(samples: &[Sample], k: usize) -> (Vec2, f64) {
         let slope = |i: usize| {
             let (p, q) = (&samples[i], &samples[i + 1]);
@@ -297,6 +324,15 @@ pub enum Motion {
 
 impl Motion {
     /// Pose at time `t`.
+    ///
+    /// ```
+    /// use workcell::motion::{Motion, Pose, Trajectory};
+    /// let robot = Motion::Sampled(Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0)), (1.0, Pose::new(2.0, 0.0, 0.0))])?);
+    /// assert_eq!(robot.pose_at(0.5), Pose::new(1.0, 0.0, 0.0));
+    /// let post = Motion::Fixed(Pose::new(5.0, 5.0, 0.0));
+    /// assert_eq!(post.pose_at(1e6), Pose::new(5.0, 5.0, 0.0));
+    /// # Ok::<(), workcell::motion::TrajectoryError>(())
+    /// ```
     #[inline]
     pub fn pose_at(&self, t: f64) -> Pose {
         match self {

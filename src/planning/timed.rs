@@ -50,6 +50,16 @@ impl Primitive {
     /// The primitive cut at arc length `s` along its path (0 < s < length): the part before
     /// and the part after, the turn shared in proportion to the length. Both parts follow the
     /// same path at angles within the same range, so they sweep no more than the whole did.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::planning::Primitive;
+    /// let p = Primitive { path: vec![Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0)], theta: 0.0, turn: 1.0 };
+    /// let (before, after) = p.split_at(1.0).unwrap();
+    /// assert_eq!((before.end().pos, before.turn), (Vec2::new(1.0, 0.0), 0.25));
+    /// assert_eq!((after.start(), after.end()), (before.end(), p.end()));
+    /// assert!(p.split_at(4.0).is_none()); // not inside the path
+    /// ```
     pub fn split_at(&self, s: f64) -> Option<(Primitive, Primitive)> {
         let total = self.length();
         if !(s > 0.0 && s < total) {
@@ -90,6 +100,15 @@ impl Primitive {
     }
 
     /// The same piece run backwards.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::planning::Primitive;
+    /// let p = Primitive { path: vec![Vec2::new(0.0, 0.0), Vec2::new(4.0, 3.0)], theta: 0.5, turn: 1.0 };
+    /// let back = p.reversed();
+    /// assert_eq!((back.start(), back.end()), (p.end(), p.start()));
+    /// assert_eq!(back.reversed(), p);
+    /// ```
     pub fn reversed(&self) -> Primitive {
         Primitive {
             path: self.path.iter().rev().copied().collect(),
@@ -197,6 +216,23 @@ impl PlannedMove {
     /// The same move `factor` (≥ 1) times slower: the same poses, every time stamp
     /// stretched, velocities divided by `factor` and accelerations by its square, so every
     /// limit still holds.
+    ///
+    /// ```
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::Pose;
+    /// use workcell::planning::{plan_move, PlannerOptions, RobotLimits};
+    /// let robot = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let limits = RobotLimits { max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 };
+    /// let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(3.0, 4.0, 1.0));
+    /// let fast = plan_move(&robot, &limits, &[], 0.01, from, to, &PlannerOptions::default())?;
+    /// let slow = fast.slowed(2.0);
+    /// assert_eq!(slow.duration, 2.0 * fast.duration);
+    /// for (s, f) in slow.samples.iter().zip(&fast.samples) {
+    ///     assert_eq!((s.t, s.pos, s.theta), (2.0 * f.t, f.pos, f.theta));
+    ///     assert_eq!(s.vel, f.vel / 2.0);
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn slowed(&self, factor: f64) -> PlannedMove {
         PlannedMove {
             duration: self.duration * factor,

@@ -27,6 +27,25 @@ const RINGS: [f64; 3] = [1.0, 2.0, 4.0];
 /// the swept robot), it turns in place where it has room (see this file's notes). Errors:
 /// invalid limits, δ, poses or options; a start or goal too close to an obstacle (the first
 /// in slice order) even without turning; no path.
+///
+/// ```
+/// use workcell::geometry::{ConvexPolygon, Vec2};
+/// use workcell::motion::Pose;
+/// use workcell::planning::{plan_move, rest_to_rest_time, PlanError, PlannerOptions, RobotLimits};
+/// let robot = ConvexPolygon::rectangle(1.0, 1.0)?;
+/// let limits = RobotLimits { max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 };
+/// let opts = PlannerOptions::default();
+/// let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(10.0, 0.0, 0.0));
+/// // Nothing in the way: straight, rest to rest at the limits.
+/// let straight = plan_move(&robot, &limits, &[], 0.01, from, to, &opts)?;
+/// assert_eq!(straight.path, [Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)]);
+/// assert_eq!(straight.duration, rest_to_rest_time(10.0, 1.0, 2.0));
+/// // A goal inside an obstacle cannot be reached.
+/// let post = ConvexPolygon::from_vertices(&[[9.0, -1.0], [11.0, -1.0], [11.0, 1.0], [9.0, 1.0]])?;
+/// let e = plan_move(&robot, &limits, &[post], 0.01, from, to, &opts).unwrap_err();
+/// assert_eq!(e, PlanError::GoalBlocked { obstacle: 0 });
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn plan_move(
     shape: &ConvexPolygon,
     limits: &RobotLimits,

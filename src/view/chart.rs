@@ -20,6 +20,17 @@ const LABEL_HEIGHT: f64 = 15.0;
 const LABEL_CHAR_WIDTH: f64 = 7.0;
 
 /// The chart as an SVG document.
+///
+/// ```
+/// use workcell::compare::{chart, compare, NamedScene};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let scenes = [NamedScene { name: "tunnelling.json".into(), scene }];
+/// let result = compare(&scenes, &["adaptive".parse()?, "sampled:1".parse()?], |_| ());
+/// let svg = chart(&result);
+/// assert!(svg.starts_with("<svg") && svg.contains("adaptive") && svg.contains("sampled:1"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn chart(c: &Comparison) -> String {
     let points: Vec<(&str, f64, usize, usize)> = c
         .methods

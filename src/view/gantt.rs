@@ -47,12 +47,35 @@ impl TimeAxis {
 }
 
 /// The chart as an SVG document.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::view::{gantt, Model};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+/// let svg = gantt(&model);
+/// assert!(svg.starts_with("<svg") && svg.contains("needle") && !svg.contains("cursor"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn gantt(m: &Model) -> String {
     gantt_svg(m, WIDTH, false).0.to_string()
 }
 
 /// The chart `width` pixels wide and its time axis; with a cursor (a line `#cursor`) for the
 /// animated page.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::view::{gantt_svg, Model};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+/// let (doc, axis) = gantt_svg(&model, 800.0, true);
+/// assert!(doc.to_string().contains(r#"id="cursor""#));
+/// assert!(axis.x(model.start()) < axis.x(model.end) && axis.x(model.end) <= 800.0);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
     let (t0, t1) = (m.start(), m.end.max(m.start() + 1e-9));
     let axis = TimeAxis {

@@ -42,6 +42,17 @@ struct AxisJson {
 }
 
 /// The page as one HTML document.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::view::{html, Model};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+/// let page = html(&model);
+/// assert!(page.starts_with("<!DOCTYPE html>") && page.contains("needle") && page.contains("<svg"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn html(m: &Model) -> String {
     let frame = Frame::of(m);
     let stage = cell_svg(m, true)

@@ -174,6 +174,30 @@ fn file_title(path: &std::path::Path) -> String {
 impl Model {
     /// The model of `solve` or `evaluate`: the cell, the scene of the final schedule
     /// (`Schedule::scene`, as `--export-scene` writes it) and the result document.
+    ///
+    /// ```
+    /// use workcell::cell::{load_cell, parse_sequences};
+    /// use workcell::view::Model;
+    /// use workcell::wcp::report::{collision_json, schedule_json, ResultJson};
+    /// use workcell::wcp::{evaluate, SolveOptions};
+    /// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let sequences = r#"{"R1": ["weld-2", "weld-1", "weld-3"], "R2": ["weld-4"]}"#;
+    /// let file = "seq.json".as_ref();
+    /// let e = evaluate(&cell, &parse_sequences(sequences, file, &cell)?, &SolveOptions::default(), file)?;
+    /// let (sequences, schedule) = schedule_json(&cell, &e.schedule);
+    /// // The result document, as `workcell evaluate --json` writes it.
+    /// let result = ResultJson {
+    ///     makespan: e.schedule.makespan, collision_free: e.collision_free, sequences, schedule,
+    ///     first_collision: e.collision.as_ref().map(|c| collision_json(&cell, c)),
+    ///     iterations: 1, schedules_checked: None, waits: vec![], legs: vec![], blind_sequences: None,
+    ///     blind_makespan: None, blind_optimal: None, feedback: vec![], failure: None,
+    ///     check_stats: e.report.stats, stages_ms: e.times.into(),
+    /// };
+    /// let model = Model::of_result(&cell, &e.schedule.scene(&cell), &result);
+    /// assert_eq!((model.robots.len(), model.tasks.len(), model.end), (2, 4, e.schedule.makespan));
+    /// assert_eq!(model.contact.expect("the collision").bodies, ["R1", "R2"]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn of_result(cell: &Cell, scene: &Scene, result: &ResultJson) -> Model {
         let mut robots = robots_of(scene);
         let task_index = |name: &str| cell.tasks.iter().position(|t| t.name == name);
@@ -275,6 +299,20 @@ impl Model {
     }
 
     /// The model of `check`: the scene and its report.
+    ///
+    /// ```
+    /// use workcell::collision::{check, CheckOptions};
+    /// use workcell::view::Model;
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+    /// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+    /// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+    /// let names: Vec<&str> = model.robots.iter().map(|r| r.name.as_str()).collect();
+    /// assert_eq!(names, ["needle", "block"]);
+    /// let contact = model.contact.expect("the needle hits the block");
+    /// assert_eq!(contact.bodies, ["needle", "block"]);
+    /// assert!(model.safe_until.unwrap() <= contact.time);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn of_check(file: &std::path::Path, scene: &Scene, report: &CheckReport) -> Model {
         let mut robots = robots_of(scene);
         for robot in &mut robots {
@@ -346,6 +384,13 @@ impl Model {
 
 /// The pose of a robot at `t` exactly as the checker interpolates: linear in x, y and θ
 /// between samples, the first pose before them and the last after them.
+///
+/// ```
+/// use workcell::view::pose_at;
+/// let samples = [[0.0, 0.0, 0.0, 0.0], [2.0, 4.0, 2.0, 1.0]]; // [t, x, y, theta]
+/// assert_eq!(pose_at(&samples, 1.0), [2.0, 1.0, 0.5]);
+/// assert_eq!(pose_at(&samples, 5.0), [4.0, 2.0, 1.0]); // after the last: the last pose
+/// ```
 pub fn pose_at(samples: &[[f64; 4]], t: f64) -> [f64; 3] {
     let k = samples.partition_point(|s| s[0] <= t);
     let (p, q, u) = if k == 0 {

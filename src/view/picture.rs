@@ -96,6 +96,17 @@ impl Frame {
 }
 
 /// The still picture as an SVG document.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::view::{picture, Model};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+/// let svg = picture(&model);
+/// assert!(svg.starts_with("<svg") && svg.contains("needle") && svg.contains("block"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn picture(m: &Model) -> String {
     cell_svg(m, false).to_string()
 }
@@ -111,6 +122,19 @@ pub fn placed(robot: &RobotView, pose: [f64; 3]) -> impl Iterator<Item = [f64; 2
 
 /// The cell as an SVG document: still, or as the animated page's stage (no snapshots of the
 /// robots, which the page draws moving, and no legend, which the page has beside it).
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::view::{cell_svg, picture, Model};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+/// let still = cell_svg(&model, false).to_string();
+/// let stage = cell_svg(&model, true).to_string();
+/// assert_eq!(still, picture(&model));
+/// assert!(stage.len() < still.len()); // no snapshots, no legend
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn cell_svg(m: &Model, animated: bool) -> Document {
     let frame = Frame::of(m);
     let legend_rows = if animated {

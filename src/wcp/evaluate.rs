@@ -41,6 +41,26 @@ pub struct Evaluated {
 /// obstacle or a robot is a collision the check reports. A schedule that f64 cannot place on one time axis is an
 /// error about what stretched the axis: a task's duration or a robot's limits (the cell),
 /// or a wait (`sequences_file`).
+///
+/// ```
+/// use workcell::cell::{load_cell, parse_sequences};
+/// use workcell::wcp::{evaluate, SolveOptions};
+/// let cell = load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let file = "seq.json".as_ref();
+/// let opts = SolveOptions::default();
+/// // R1 does every weld, R2 stays home: nothing meets.
+/// let alone = parse_sequences(r#"{"R1": ["weld-1", "weld-3", "weld-2", "weld-4"]}"#, file, &cell)?;
+/// let e = evaluate(&cell, &alone, &opts, file)?;
+/// assert!(e.collision_free && e.collision.is_none() && e.report.verdict().is_certified_free());
+/// assert!(e.schedule.makespan > 1.2 + 1.3 + 1.7 + 2.3); // the welds and the moves between them
+/// // Welds 2 and 4 lie too close for both robots at once.
+/// let both = parse_sequences(r#"{"R1": ["weld-2", "weld-1", "weld-3"], "R2": ["weld-4"]}"#, file, &cell)?;
+/// let e = evaluate(&cell, &both, &opts, file)?;
+/// let verdict = e.report.verdict();
+/// assert_eq!(verdict.contact().expect("a collision").bodies, ["R1", "R2"]);
+/// assert!(!e.collision_free && e.collision.is_some());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn evaluate(
     cell: &Cell,
     sequences: &Sequences,

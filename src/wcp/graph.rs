@@ -40,6 +40,19 @@ impl WcpGraph {
     /// An arc for every robot and ordered pair of the nodes it may visit: the certified time
     /// of the moves `store` planned, the lower bound of `bounds` for the others; no arc for a
     /// move known to fail. Robots × nodes² arcs: meant for cells of a few hundred tasks.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{bounds, MoveStore, WcpGraph};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// store.get(0, 0, 1).unwrap(); // one move planned: its arcs are exact, the others bounds
+    /// let g = WcpGraph::new(&cell, &store, &bounds(&cell)).graph;
+    /// // 2 homes + 4 tasks; each robot: 5 nodes, 5·4 ordered pairs.
+    /// assert_eq!((g.node_count(), g.edge_count()), (6, 40));
+    /// assert_eq!(g.edge_weights().filter(|a| a.exact).count(), 2); // R1 home -> weld-1 and back
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn new(cell: &Cell, store: &MoveStore, bounds: &Bounds) -> Self {
         let (robots, tasks) = (cell.robots.len(), cell.tasks.len());
         let mut graph = DiGraph::with_capacity(robots + tasks, 0);
@@ -76,6 +89,19 @@ impl WcpGraph {
     }
 
     /// The contract's `--export-graph` document.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{bounds, MoveStore, WcpGraph};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let file = WcpGraph::new(&cell, &store, &bounds(&cell)).export(&cell);
+    /// assert_eq!((file.nodes[0].name.as_str(), file.nodes[0].kind), ("R1", "home"));
+    /// assert_eq!((file.nodes[2].name.as_str(), file.nodes[2].kind), ("weld-1", "task"));
+    /// let arc = file.arcs.iter().find(|a| a.robot == "R2" && a.from == "R2" && a.to == "weld-4").unwrap();
+    /// assert!(!arc.exact && arc.travel_time > 0.0); // not planned: a lower bound
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn export(&self, cell: &Cell) -> GraphFile {
         let name = |k: NodeKind| match k {
             NodeKind::Home(r) => cell.robots[r].name.clone(),
@@ -182,6 +208,26 @@ pub fn plan_reaches(
 /// status 2, naming the task and each robot's reason. Plans the moves between a home and an
 /// allowed task that it needs and the store has not planned yet: none after
 /// `plan_reaches` when the cell can be used.
+///
+/// ```
+/// use workcell::cell::parse_cell;
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{check_reachable, MoveStore};
+/// // Task "boxed" lies inside four walls.
+/// let wall = |x0: f64, y0: f64, x1: f64, y1: f64| format!(
+///     r#"{{"name": "w{x0},{y0},{x1},{y1}", "shape": [[{x0},{y0}],[{x1},{y0}],[{x1},{y1}],[{x0},{y1}]]}}"#);
+/// let text = format!(r#"{{"delta": 0.01,
+///   "robots": [{{"name": "R1", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+///               "home": [0, 0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}}],
+///   "obstacles": [{}, {}, {}, {}],
+///   "tasks": [{{"name": "open", "at": [3, 0, 0], "duration": 1}},
+///             {{"name": "boxed", "at": [10, 0, 0], "duration": 1}}]}}"#,
+///     wall(7.0, -3.0, 8.0, 3.0), wall(12.0, -3.0, 13.0, 3.0), wall(7.0, 2.0, 13.0, 3.0), wall(7.0, -3.0, 13.0, -2.0));
+/// let cell = parse_cell(&text, "c.json".as_ref())?.cell;
+/// let e = check_reachable(&cell, &MoveStore::new(&cell, &PlannerOptions::default())).unwrap_err();
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("boxed"), "tasks[1].at"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError> {
     // A home from which no move can start is the home's fault, not its tasks'.
     for (r, robot) in cell.robots.iter().enumerate() {

@@ -30,6 +30,12 @@ impl Leg {
     };
 
     /// True for the default leg.
+    ///
+    /// ```
+    /// use workcell::wcp::legs::Leg;
+    /// assert!(Leg::DEFAULT.is_default() && Leg::default().is_default());
+    /// assert!(!Leg { wait: 0.5, ..Leg::DEFAULT }.is_default());
+    /// ```
     pub fn is_default(&self) -> bool {
         self.wait == 0.0 && self.pieces.is_none()
     }
@@ -65,6 +71,21 @@ pub enum HoldReason {
 
 impl Piece {
     /// The duration of the piece.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::Pose;
+    /// use workcell::planning::{plan_move, PlannerOptions, RobotLimits};
+    /// use workcell::wcp::legs::{HoldReason, Piece};
+    /// let limits = RobotLimits { max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 };
+    /// let (a, b) = (Pose::new(0.0, 0.0, 0.0), Pose::new(4.0, 0.0, 0.0));
+    /// let m = plan_move(&ConvexPolygon::rectangle(1.0, 1.0)?, &limits, &[], 0.01, a, b, &PlannerOptions::default())?;
+    /// let d = m.duration;
+    /// assert_eq!(Piece::Go { motion: Arc::new(m), scale: 2.0 }.duration(), 2.0 * d);
+    /// assert_eq!(Piece::Hold { duration: 1.5, reason: HoldReason::Pause }.duration(), 1.5);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn duration(&self) -> f64 {
         match self {
             Piece::Go { motion, scale } => motion.duration * scale,
@@ -79,11 +100,25 @@ impl Piece {
 pub type Legs = Vec<Arc<Vec<Leg>>>;
 
 /// The leg `m` of robot `r` in `legs`, default if not listed.
+///
+/// ```
+/// use workcell::wcp::legs::{default_legs, leg, with_leg, Leg};
+/// let legs = with_leg(&default_legs(2), 0, 1, Leg { wait: 2.0, ..Leg::DEFAULT });
+/// assert_eq!(leg(&legs, 0, 1).wait, 2.0);
+/// assert_eq!(leg(&legs, 0, 7), &Leg::DEFAULT); // beyond the list: default
+/// ```
 pub fn leg(legs: &[Arc<Vec<Leg>>], r: usize, m: usize) -> &Leg {
     legs.get(r).and_then(|l| l.get(m)).unwrap_or(&Leg::DEFAULT)
 }
 
 /// Default legs for `robots` robots.
+///
+/// ```
+/// use workcell::wcp::legs::default_legs;
+/// let legs = default_legs(3);
+/// assert_eq!(legs.len(), 3);
+/// assert!(legs.iter().all(|l| l.is_empty())); // every leg the planned move, at once
+/// ```
 pub fn default_legs(robots: usize) -> Legs {
     // One shared empty list: a robot's list is replaced, never changed in place.
     let none = Arc::new(Vec::new());
@@ -91,6 +126,16 @@ pub fn default_legs(robots: usize) -> Legs {
 }
 
 /// `legs` with robot `r`'s leg `m` replaced.
+///
+/// ```
+/// use workcell::wcp::legs::{default_legs, with_leg, Leg};
+/// let none = default_legs(2);
+/// let waits = with_leg(&none, 1, 2, Leg { wait: 1.0, ..Leg::DEFAULT });
+/// assert_eq!(waits[1].len(), 3); // legs 0 and 1 default, leg 2 waits
+/// assert!(none[1].is_empty()); // the original is unchanged
+/// // Setting it back to default trims the list again.
+/// assert_eq!(with_leg(&waits, 1, 2, Leg::DEFAULT), none);
+/// ```
 pub fn with_leg(legs: &Legs, r: usize, m: usize, new: Leg) -> Legs {
     let mut out = legs.clone();
     let mut list = (*out[r]).clone();

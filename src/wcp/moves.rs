@@ -70,6 +70,14 @@ impl fmt::Display for MoveFailure {
 }
 
 /// The pose of node `node` for robot `r`: its home for 0, task `node - 1` otherwise.
+///
+/// ```
+/// use workcell::wcp::node_pose;
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// assert_eq!(node_pose(&cell, 1, 0), cell.robots[1].home);
+/// assert_eq!(node_pose(&cell, 1, 3), cell.tasks[2].at);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn node_pose(cell: &Cell, r: usize, node: usize) -> Pose {
     match node {
         0 => cell.robots[r].home,
@@ -78,6 +86,13 @@ pub fn node_pose(cell: &Cell, r: usize, node: usize) -> Pose {
 }
 
 /// The name of node `node` for robot `r`: the robot's name for its home, else the task's.
+///
+/// ```
+/// use workcell::wcp::node_name;
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// assert_eq!((node_name(&cell, 1, 0), node_name(&cell, 1, 3)), ("R2", "weld-3"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn node_name(cell: &Cell, r: usize, node: usize) -> &str {
     match node {
         0 => &cell.robots[r].name,
@@ -86,6 +101,22 @@ pub fn node_name(cell: &Cell, r: usize, node: usize) -> &str {
 }
 
 /// The nodes robot `r` may visit: its home, then its allowed tasks in file order.
+///
+/// ```
+/// use workcell::cell::parse_cell;
+/// use workcell::wcp::robot_nodes;
+/// let text = r#"{"delta": 0.01,
+///   "robots": [{"name": "R1", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+///               "home": [0, 0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1},
+///              {"name": "R2", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+///               "home": [9, 0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}],
+///   "tasks": [{"name": "a", "at": [3, 0, 0], "duration": 1, "robots": ["R1"]},
+///             {"name": "b", "at": [6, 0, 0], "duration": 1}]}"#;
+/// let cell = parse_cell(text, "c.json".as_ref())?.cell;
+/// assert_eq!(robot_nodes(&cell, 0), [0, 1, 2]); // home, a, b
+/// assert_eq!(robot_nodes(&cell, 1), [0, 2]); // R2 may not do a
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn robot_nodes(cell: &Cell, r: usize) -> Vec<usize> {
     let tasks = cell.tasks.iter().enumerate();
     std::iter::once(0)
@@ -107,6 +138,17 @@ fn limits(robot: &CellRobot) -> RobotLimits {
 
 /// Plans robot `r`'s move between two nodes and has the checker certify it against every
 /// obstacle. The planner is deterministic: planning the same move again gives the same one.
+///
+/// ```
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{certified_move, node_pose};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// // R1 from its home (node 0) to weld-1 (node 1), certified clear of the fixture.
+/// let m = certified_move(&cell, 0, 0, 1, &PlannerOptions::default(), &cell.obstacle_bodies()).unwrap();
+/// assert_eq!(m.samples.last().unwrap().pos, node_pose(&cell, 0, 1).pos);
+/// assert!(m.duration > 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn certified_move(
     cell: &Cell,
     r: usize,
@@ -223,6 +265,17 @@ pub(crate) fn certify(
 }
 
 /// The admissible lower bound of every move of the cell (see [`Bounds`]).
+///
+/// ```
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{bounds, MoveStore};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let (lower, store) = (bounds(&cell), MoveStore::new(&cell, &PlannerOptions::default()));
+/// // Never longer than the certified move: R2 from home around the fixture to weld-1.
+/// assert!(lower.bound(1, 0, 1) <= store.duration(1, 0, 1).unwrap());
+/// assert!(lower.bound(1, 0, 1) > 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn bounds(cell: &Cell) -> Bounds {
     let pose = |p: &Pose| (p.pos, p.theta);
     Bounds::new(
@@ -278,6 +331,18 @@ impl fmt::Debug for MoveStore {
 
 impl MoveStore {
     /// An empty store for `cell` (kept as a copy) and these planner settings.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::MoveStore;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// assert_eq!(store.planned(), 0); // nothing is planned before it is asked for
+    /// store.get(0, 0, 1).unwrap();
+    /// store.get(0, 1, 0).unwrap(); // the same move backwards: not planned again
+    /// assert_eq!(store.planned(), 1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(cell: &Cell, planner: &PlannerOptions) -> Self {
         MoveStore {
             cell: cell.clone(),
@@ -303,6 +368,18 @@ impl MoveStore {
     }
 
     /// Robot `r`'s certified move from node `from` to node `to`, planned on first use.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{node_pose, MoveStore};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let (out, back) = (store.get(0, 0, 2).unwrap(), store.get(0, 2, 0).unwrap());
+    /// assert_eq!(out.samples[0].pos, node_pose(&cell, 0, 0).pos);
+    /// assert_eq!(back.samples[0].pos, out.samples.last().unwrap().pos);
+    /// assert_eq!(back.duration, out.duration);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
         let (a, b) = (from.min(to), from.max(to));
         let slot = self.slot(r, a, b);
@@ -379,11 +456,31 @@ impl MoveStore {
 
     /// The duration of robot `r`'s move between two nodes (the same both ways), planned on
     /// first use.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::MoveStore;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// assert_eq!(store.duration(1, 2, 4).unwrap(), store.get(1, 4, 2).unwrap().duration);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn duration(&self, r: usize, from: usize, to: usize) -> Result<f64, MoveFailure> {
         self.get(r, from.min(to), from.max(to)).map(|m| m.duration)
     }
 
     /// The move's outcome if it was planned already; `None` if not (nothing is planned).
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::MoveStore;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// assert!(store.known(0, 1, 3).is_none());
+    /// let d = store.duration(0, 1, 3).unwrap();
+    /// assert_eq!(store.known(0, 3, 1), Some(Ok(d)));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn known(&self, r: usize, from: usize, to: usize) -> Option<Result<f64, MoveFailure>> {
         let (a, b) = (from.min(to), from.max(to));
         let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
@@ -399,6 +496,19 @@ impl MoveStore {
     /// Plans the moves `(robot, a, b)` not planned yet, in parallel; `progress` is called
     /// once per move (from any thread). Returns each move's duration (infinite: no move) in
     /// the order given.
+    ///
+    /// ```
+    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::MoveStore;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let told = AtomicUsize::new(0);
+    /// let times = store.plan_all(&[(0, 0, 1), (1, 0, 4)], &|| { told.fetch_add(1, Ordering::Relaxed); });
+    /// assert_eq!((store.planned(), told.into_inner()), (2, 2));
+    /// assert_eq!(times, [store.duration(0, 0, 1).unwrap(), store.duration(1, 4, 0).unwrap()]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn plan_all(
         &self,
         moves: &[(usize, usize, usize)],

@@ -85,6 +85,12 @@ pub struct StepAsideJson {
 }
 
 /// The remedy's name in the JSON and on the command line.
+///
+/// ```
+/// use workcell::wcp::{remedy_json::remedy_name, Delay, Remedy};
+/// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
+/// assert_eq!((remedy_name(&Remedy::Resequence), remedy_name(&Remedy::Delay(wait))), ("resequence", "delay"));
+/// ```
 pub fn remedy_name(r: &Remedy) -> &'static str {
     match r {
         Remedy::Resequence => "resequence",
@@ -101,6 +107,18 @@ fn move_name(cell: &Cell, robot: usize, (from, to): (usize, usize)) -> String {
 }
 
 /// What the remedy changed, or `None` for a re-sequencing (the new sequences say it).
+///
+/// ```
+/// use serde_json::json;
+/// use workcell::wcp::{remedy_json::change_json, Delay, Remedy};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// // R2 waits 1 s at home before its move to weld-4 (node 4).
+/// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
+/// assert!(change_json(&cell, &Remedy::Resequence).is_none()); // the new sequences say it
+/// let out = serde_json::to_value(change_json(&cell, &Remedy::Delay(wait)))?;
+/// assert_eq!(out, json!({"delay": {"robot": "R2", "before": "move home -> weld-4", "duration": 1.0}}));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
     let name = |robot: usize| cell.robots[robot].name.clone();
     Some(match r {
@@ -160,6 +178,15 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
 }
 
 /// The remedy in a sentence, e.g. `R2 waits 1.000 before its move home -> weld-4`.
+///
+/// ```
+/// use workcell::wcp::{remedy_json::remedy_text, Delay, Remedy};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// // R2 waits 1 s at home before its move to weld-4 (node 4).
+/// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
+/// assert_eq!(remedy_text(&cell, &Remedy::Delay(wait)), "R2 waits 1.000 before its move home -> weld-4");
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
     let name = |robot: usize| cell.robots[robot].name.as_str();
     match r {
@@ -275,6 +302,30 @@ pub struct PrimitiveJson {
 }
 
 /// The changed legs of a schedule, robot by robot, leg by leg.
+///
+/// ```
+/// use std::sync::Arc;
+/// use serde_json::json;
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::legs::{default_legs, with_leg, HoldReason, Leg, Piece};
+/// use workcell::wcp::{remedy_json::legs_json, MoveStore};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let routes = [vec![0, 2], vec![3, 1]];
+/// // A wait alone changes no motion: no leg to write.
+/// let waits = with_leg(&default_legs(2), 1, 0, Leg { wait: 1.0, ..Leg::DEFAULT });
+/// assert!(legs_json(&cell, &routes, &waits).is_empty());
+/// // R2 holds 1 s at home, then makes its planned move to weld-4.
+/// let pieces = vec![
+///     Piece::Hold { duration: 1.0, reason: HoldReason::Pause },
+///     Piece::Go { motion: store.get(1, 0, 4).unwrap(), scale: 1.0 },
+/// ];
+/// let changed = with_leg(&default_legs(2), 1, 0, Leg { wait: 0.0, pieces: Some(Arc::from(pieces)) });
+/// let out = serde_json::to_value(legs_json(&cell, &routes, &changed))?;
+/// assert_eq!((&out[0]["robot"], &out[0]["move"], &out[0]["on"]), (&json!("R2"), &json!(0), &json!("move home -> weld-4")));
+/// assert_eq!(out[0]["pieces"][0], json!({"hold": 1.0, "reason": "pause"}));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn legs_json(cell: &Cell, routes: &[Vec<usize>], legs: &Legs) -> Vec<LegJson> {
     let mut out = Vec::new();
     for (r, list) in legs.iter().enumerate() {

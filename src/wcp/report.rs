@@ -106,6 +106,17 @@ pub struct WaitJson {
 }
 
 /// The waits of a schedule in the JSON's terms.
+///
+/// ```
+/// use serde_json::json;
+/// use workcell::wcp::{report::waits_json, Delay};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// // R2 waits 1 s at home before its move to weld-4 (node 4).
+/// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
+/// let out = serde_json::to_value(waits_json(&cell, &[wait]))?;
+/// assert_eq!(out, json!([{"robot": "R2", "before_move": 0, "before": "move home -> weld-4", "duration": 1.0}]));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn waits_json(cell: &Cell, delays: &[Delay]) -> Vec<WaitJson> {
     delays
         .iter()
@@ -180,6 +191,14 @@ fn ordered_optional_map<S: Serializer, V: Serialize>(
 }
 
 /// Each robot's task names, robots in the cell's order.
+///
+/// ```
+/// use workcell::wcp::report::sequences_json;
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let named = sequences_json(&cell, &[vec![2, 0], vec![]]);
+/// assert_eq!(named, [("R1", vec!["weld-3", "weld-1"]), ("R2", vec![])]);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn sequences_json<'a>(cell: &'a Cell, routes: &[Vec<usize>]) -> Vec<(&'a str, Vec<&'a str>)> {
     cell.robots
         .iter()
@@ -192,6 +211,21 @@ pub fn sequences_json<'a>(cell: &'a Cell, routes: &[Vec<usize>]) -> Vec<(&'a str
 }
 
 /// A collision in the JSON's terms.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{legs::default_legs, report::collision_json, MoveStore, Schedule};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let schedule = Schedule::build(&cell, &[vec![1, 0, 2], vec![3]], &default_legs(2), &store).unwrap();
+/// let report = check(&schedule.scene(&cell), &CheckOptions::default());
+/// let c = schedule.collision(&cell, &report).expect("a collision");
+/// let out = collision_json(&cell, &c);
+/// assert_eq!((out.time, out.bodies.clone()), (c.time, ["R1".to_owned(), "R2".to_owned()]));
+/// assert!(out.activities[1].starts_with("move ") || out.activities[1].starts_with("task "));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn collision_json(cell: &Cell, c: &Collision) -> CollisionJson {
     let b = match (c.robots.1, c.segments.1) {
         (Some(b), Some(s)) => s.activity.describe(cell, b),
@@ -206,6 +240,21 @@ pub fn collision_json(cell: &Cell, c: &Collision) -> CollisionJson {
 }
 
 /// The rounds of a solve in the JSON's terms.
+///
+/// ```
+/// use workcell::wcp::{report::rounds_json, Delay, Iteration, Remedy};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// // R2 waits 1 s at home before its move to weld-4 (node 4).
+/// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
+/// let rounds = [
+///     Iteration { makespan: 15.4, collision: None, remedy: Some(Remedy::Delay(wait)) },
+///     Iteration { makespan: 15.9, collision: None, remedy: None },
+/// ];
+/// let out = rounds_json(&cell, &rounds);
+/// assert_eq!((out[0].iteration, out[0].remedy, out[1].iteration, out[1].remedy), (1, Some("delay"), 2, None));
+/// assert!(out[0].change.is_some() && out[1].change.is_none());
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn rounds_json(cell: &Cell, iterations: &[Iteration]) -> Vec<RoundJson> {
     iterations
         .iter()
@@ -221,6 +270,19 @@ pub fn rounds_json(cell: &Cell, iterations: &[Iteration]) -> Vec<RoundJson> {
 }
 
 /// Sequences and schedule of `schedule` in the JSON's terms.
+///
+/// ```
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{legs::default_legs, report::schedule_json, MoveStore, Schedule};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let schedule = Schedule::build(&cell, &[vec![0], vec![]], &default_legs(2), &store).unwrap();
+/// let (sequences, timeline) = schedule_json(&cell, &schedule);
+/// assert_eq!(sequences, [("R1", vec!["weld-1"]), ("R2", vec![])]);
+/// let r1: Vec<(&str, &str)> = timeline[0].1.iter().map(|s| (s.activity, s.at)).collect();
+/// assert_eq!(r1, [("move", "R1"), ("task", "weld-1"), ("move", "weld-1")]); // homes are named after their robot
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 #[allow(clippy::type_complexity)]
 pub fn schedule_json<'a>(
     cell: &'a Cell,
@@ -277,6 +339,18 @@ pub fn schedule_json<'a>(
 
 /// The human summary: makespan, each robot's sequence with times, the rounds of the loop and
 /// the time per stage.
+///
+/// ```
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{legs::default_legs, report::summary, MoveStore, Schedule, StageTimes};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let schedule = Schedule::build(&cell, &[vec![0, 1, 2, 3], vec![]], &default_legs(2), &store).unwrap();
+/// let text = summary(&cell, &schedule, &[], None, StageTimes::default());
+/// assert!(text.starts_with(&format!("makespan {:.3}\n", schedule.makespan)), "{text}");
+/// assert!(text.contains("R2 stays home"), "{text}");
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn summary(
     cell: &Cell,
     schedule: &Schedule,

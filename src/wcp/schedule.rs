@@ -46,6 +46,13 @@ pub enum Activity {
 
 impl Activity {
     /// The sequencer's step for this activity.
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Step;
+    /// use workcell::wcp::Activity;
+    /// assert_eq!(Activity::Work(2).step(), Step::Stay { node: 3 }); // task 2 is node 3
+    /// assert_eq!(Activity::Pause { from: 0, to: 3 }.step(), Step::Move { from: 0, to: 3 });
+    /// ```
     pub fn step(self) -> Step {
         match self {
             Activity::Move { from, to }
@@ -58,6 +65,14 @@ impl Activity {
     }
 
     /// Human description, e.g. `move weld-1 -> weld-4`.
+    ///
+    /// ```
+    /// use workcell::wcp::Activity;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// assert_eq!(Activity::Move { from: 0, to: 4 }.describe(&cell, 1), "move home -> weld-4");
+    /// assert_eq!(Activity::Work(0).describe(&cell, 0), "task weld-1");
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn describe(self, cell: &Cell, r: usize) -> String {
         match self {
             // A robot without tasks may leave home out of another's way and come back.
@@ -120,6 +135,20 @@ pub struct Delay {
 
 impl Delay {
     /// The waits of `legs` on the routes `routes`, robot by robot, leg by leg.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::wcp::legs::{default_legs, with_leg, Leg};
+    /// use workcell::wcp::Delay;
+    /// let routes = [vec![0, 2], vec![3, 1]];
+    /// // R2 waits 1.5 before its second move (weld-4 -> weld-2, nodes 4 -> 2).
+    /// let legs = with_leg(&default_legs(2), 1, 1, Leg { wait: 1.5, ..Leg::DEFAULT });
+    /// let delays = Delay::of_legs(&routes, &legs);
+    /// assert_eq!(delays.len(), 1);
+    /// assert_eq!((delays[0].robot, delays[0].before_move, delays[0].nodes, delays[0].duration), (1, 1, (4, 2), 1.5));
+    /// assert_eq!(Delay::legs(2, &delays), legs);
+    /// # let _: Vec<Arc<Vec<Leg>>> = legs;
+    /// ```
     pub fn of_legs(routes: &[Vec<usize>], legs: &[Arc<Vec<Leg>>]) -> Vec<Delay> {
         let mut out = Vec::new();
         for (r, list) in legs.iter().enumerate() {
@@ -137,6 +166,15 @@ impl Delay {
     }
 
     /// Legs with these waits, each added to its leg's wait, and nothing else changed.
+    ///
+    /// ```
+    /// use workcell::wcp::legs::leg;
+    /// use workcell::wcp::Delay;
+    /// let wait = Delay { robot: 0, before_move: 2, nodes: (3, 0), duration: 0.5 };
+    /// let legs = Delay::legs(2, &[wait, wait]); // waits at the same leg add up
+    /// assert_eq!(leg(&legs, 0, 2).wait, 1.0);
+    /// assert!(leg(&legs, 0, 1).is_default() && leg(&legs, 1, 0).is_default());
+    /// ```
     pub fn legs(robots: usize, delays: &[Delay]) -> Legs {
         let mut legs = default_legs(robots);
         for d in delays {
@@ -151,7 +189,14 @@ impl Delay {
     }
 }
 
-/// The nodes a route visits: home, its tasks (`1 + t`), home; just home for no task.
+/// The nodes a route visits: home, its tasks (`1 + t`), home; home twice for no task (its
+/// one leg, home to home, is the excursion a remedy may give it).
+///
+/// ```
+/// use workcell::wcp::route_nodes;
+/// assert_eq!(route_nodes(&[2, 0]), [0, 3, 1, 0]);
+/// assert_eq!(route_nodes(&[]), [0, 0]);
+/// ```
 pub fn route_nodes(route: &[usize]) -> Vec<usize> {
     if route.is_empty() {
         return vec![0, 0];
@@ -179,6 +224,19 @@ pub struct RobotSchedule {
 
 impl RobotSchedule {
     /// The pose at time `t`, interpolated as the checker interpolates it.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{node_pose, MoveStore, RobotSchedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let r1 = RobotSchedule::build(&cell, 0, &[0], &[], &store).unwrap();
+    /// assert_eq!(r1.pose_at(0.0), cell.robots[0].home);
+    /// let at_weld = r1.segments[1].start; // after the move out
+    /// assert_eq!(r1.pose_at(at_weld).pos, node_pose(&cell, 0, 1).pos);
+    /// assert_eq!(r1.pose_at(r1.end + 5.0), cell.robots[0].home);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn pose_at(&self, t: f64) -> Pose {
         let s = &self.samples;
         let k = s.partition_point(|p| p.t <= t);
@@ -204,6 +262,19 @@ impl RobotSchedule {
     }
 
     /// The segment under way at time `t`.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{Activity, MoveStore, RobotSchedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let r1 = RobotSchedule::build(&cell, 0, &[0], &[], &store).unwrap();
+    /// let at_weld = r1.segments[1].start;
+    /// assert_eq!(r1.segment_at(at_weld / 2.0).activity, Activity::Move { from: 0, to: 1 });
+    /// assert_eq!(r1.segment_at(at_weld + 0.6).activity, Activity::Work(0)); // weld-1 lasts 1.2
+    /// assert_eq!(r1.segment_at(r1.end + 1.0).activity, Activity::Done);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn segment_at(&self, t: f64) -> &Segment {
         let k = self.segments.partition_point(|s| s.end <= t);
         &self.segments[k.min(self.segments.len() - 1)]
@@ -265,6 +336,22 @@ impl BuildError {
     }
 
     /// Why, in words.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::legs::{default_legs, with_leg, Leg, Piece};
+    /// use workcell::wcp::{BuildError, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// // R2's first leg replaced by R1's move out of its home, far from R2.
+    /// let wrong = [Piece::Go { motion: store.get(0, 0, 1).unwrap(), scale: 1.0 }];
+    /// let legs = with_leg(&default_legs(2), 1, 0, Leg { wait: 0.0, pieces: Some(Arc::from(wrong)) });
+    /// let e = Schedule::build(&cell, &[vec![0], vec![1]], &legs, &store).unwrap_err();
+    /// assert!(matches!(e, BuildError::Discontinuous { robot: 1, leg: 0, .. }));
+    /// assert!(e.reason(&cell).starts_with("its move 0 is not continuous"));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn reason(&self, cell: &Cell) -> String {
         match self {
             BuildError::Move {
@@ -297,6 +384,18 @@ impl Schedule {
     /// Times every robot's route: from home at t = 0, each leg (by default the planned
     /// move, at once; see [`Leg`]), each task held for its duration, back home. The moves
     /// come from the store (planned there if they were not yet).
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{legs::default_legs, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let routes = [vec![0, 2], vec![3, 1]];
+    /// let schedule = Schedule::build(&cell, &routes, &default_legs(2), &store).unwrap();
+    /// assert_eq!(schedule.robots[1].route, [3, 1]);
+    /// assert_eq!(schedule.makespan, schedule.robots[0].end.max(schedule.robots[1].end));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn build(
         cell: &Cell,
         routes: &[Vec<usize>],
@@ -313,6 +412,20 @@ impl Schedule {
     }
 
     /// The schedule of these robot schedules, in robot order.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{MoveStore, RobotSchedule, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let r1 = RobotSchedule::build(&cell, 0, &[0, 1], &[], &store).unwrap();
+    /// let r2 = RobotSchedule::build(&cell, 1, &[2, 3], &[], &store).unwrap();
+    /// let (e1, e2) = (r1.end, r2.end);
+    /// let schedule = Schedule::of(vec![Arc::new(r1), Arc::new(r2)]);
+    /// assert_eq!(schedule.makespan, e1.max(e2));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn of(robots: Vec<Arc<RobotSchedule>>) -> Schedule {
         let makespan = robots.iter().map(|s| s.end).fold(0.0, f64::max);
         Schedule { robots, makespan }
@@ -320,6 +433,19 @@ impl Schedule {
 
     /// The schedule as a scene for the checker (and `--export-scene`): robots with their
     /// trajectories, then the obstacles.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{legs::default_legs, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let schedule = Schedule::build(&cell, &[vec![0, 1], vec![2, 3]], &default_legs(2), &store).unwrap();
+    /// let scene = schedule.scene(&cell);
+    /// let names: Vec<&str> = scene.bodies.iter().map(|b| b.name.as_str()).collect();
+    /// assert_eq!(names, ["R1", "R2", "fixture"]);
+    /// assert_eq!((scene.delta, scene.horizon()), (cell.delta, (0.0, schedule.makespan)));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn scene(&self, cell: &Cell) -> Scene {
         let robots = (0..self.robots.len()).map(|r| self.body(cell, r));
         Scene {
@@ -329,6 +455,18 @@ impl Schedule {
     }
 
     /// Robots `a` and `b` alone: the scene of one pair.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{legs::default_legs, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let schedule = Schedule::build(&cell, &[vec![0, 1], vec![2, 3]], &default_legs(2), &store).unwrap();
+    /// let pair = schedule.pair_scene(&cell, 1, 0);
+    /// let names: Vec<&str> = pair.bodies.iter().map(|b| b.name.as_str()).collect();
+    /// assert_eq!(names, ["R2", "R1"]); // no fixture
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn pair_scene(&self, cell: &Cell, a: usize, b: usize) -> Scene {
         Scene {
             delta: cell.delta,
@@ -348,6 +486,22 @@ impl Schedule {
     }
 
     /// The first collision of a check of [`Schedule::scene`], located in the schedule.
+    ///
+    /// ```
+    /// use workcell::collision::{check, CheckOptions};
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{legs::default_legs, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// // Welds 2 and 4 lie too close for R1 and R2 at once.
+    /// let routes = [vec![1, 0, 2], vec![3]];
+    /// let schedule = Schedule::build(&cell, &routes, &default_legs(2), &store).unwrap();
+    /// let report = check(&schedule.scene(&cell), &CheckOptions::default());
+    /// let c = schedule.collision(&cell, &report).expect("a collision");
+    /// assert_eq!((c.robots, c.bodies.clone()), ((0, Some(1)), ["R1".into(), "R2".into()]));
+    /// assert!(c.segments.0.start <= c.time && c.time <= c.segments.0.end);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn collision(&self, cell: &Cell, report: &CheckReport) -> Option<Collision> {
         let contact = report.first_contact.as_ref()?;
         let robot = |name: &str| cell.robots.iter().position(|r| r.name == name);
@@ -410,6 +564,19 @@ impl RobotSchedule {
     /// Times robot `r`'s route with its legs (missing ones default): from home at t = 0,
     /// every leg, every task held for its duration, back home. A robot without tasks stays
     /// home, unless its one leg is an excursion from home to home.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{Activity, MoveStore, RobotSchedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// // R1 does weld-1: out, the weld, back, then done.
+    /// let r1 = RobotSchedule::build(&cell, 0, &[0], &[], &store).unwrap();
+    /// let kinds: Vec<Activity> = r1.segments.iter().map(|s| s.activity).collect();
+    /// assert_eq!(kinds, [Activity::Move { from: 0, to: 1 }, Activity::Work(0), Activity::Move { from: 1, to: 0 }, Activity::Done]);
+    /// assert_eq!(r1.end, 2.0 * store.duration(0, 0, 1).unwrap() + 1.2);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn build(
         cell: &Cell,
         r: usize,

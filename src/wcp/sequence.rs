@@ -35,6 +35,22 @@ const STALL_ROUNDS: usize = 3;
 /// planned and certified, its makespan computed on them. With a time limit the best such
 /// plan found when it runs out (the round under way still plans its moves, so that there is
 /// one).
+///
+/// ```
+/// use workcell::wcp::sequencer::{Conflict, Step};
+/// use workcell::wcp::{prepare, sequence, SolveOptions};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let opts = SolveOptions::default();
+/// let prepared = prepare(&cell, &opts, &())?;
+/// let blind = sequence(&cell, &prepared, &[], &opts)?;
+/// assert_eq!(blind.sequences.iter().map(Vec::len).sum::<usize>(), 4); // every weld, once
+/// // Forbid R1 at weld-2 (node 2) while R2 is at weld-4 (node 4).
+/// let c = Conflict { a: (0, Step::Stay { node: 2 }), b: (1, Step::Stay { node: 4 }) };
+/// let apart = sequence(&cell, &prepared, &[c], &opts)?;
+/// assert_eq!(apart.violations, 0);
+/// assert!(apart.makespan >= blind.makespan);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn sequence(
     cell: &Cell,
     prepared: &Prepared,
@@ -46,6 +62,18 @@ pub fn sequence(
 
 /// As [`sequence`]; the local search starts from `start` (one route per robot) when given,
 /// and `progress` hears the rounds and the makespans found.
+///
+/// ```
+/// use workcell::wcp::{prepare, sequence, sequence_with, SolveOptions};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let opts = SolveOptions::default();
+/// let prepared = prepare(&cell, &opts, &())?;
+/// let start = [vec![0, 1, 2, 3], vec![]];
+/// let sol = sequence_with(&cell, &prepared, &[], &opts, Some(&start), &())?;
+/// // No worse than the start, and here as good as without one.
+/// assert_eq!(sol.makespan, sequence(&cell, &prepared, &[], &opts)?.makespan);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn sequence_with(
     cell: &Cell,
     prepared: &Prepared,

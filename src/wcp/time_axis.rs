@@ -60,6 +60,27 @@ pub struct Misplaced {
 /// replayed as the schedule times it (waits, each planned move, each task); a move that
 /// cannot be planned ends the replay (legs changed by the feedback loop are not replayed:
 /// `evaluate` builds default legs). `None` when nothing starts by `time`.
+///
+/// ```
+/// use workcell::cell::parse_cell;
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{culprit, Activity, MoveStore};
+/// // Tasks of 1 s, and one of 10¹⁷ s: f64 rounds away what follows it.
+/// let text = r#"{"delta": 0.01,
+///   "robots": [{"name": "R1", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
+///               "home": [0, 0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}],
+///   "tasks": [{"name": "long", "at": [3, 0, 0], "duration": 1e17},
+///             {"name": "short", "at": [5, 0, 0], "duration": 1},
+///             {"name": "first", "at": [1, 2, 0], "duration": 1}]}"#;
+/// let cell = parse_cell(text, "c.json".as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let route = [2, 0, 1];
+/// let m = culprit(&cell, 0, &route, &[], &store, 1e17).expect("the axis is stretched");
+/// // The long task is out of scale (the median task lasts 1 s): it is blamed.
+/// assert_eq!((m.longest.activity, m.blamed), (Activity::Work(0), m.longest));
+/// assert!(culprit(&cell, 0, &route, &[], &store, -1.0).is_none()); // nothing started yet
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn culprit(
     cell: &Cell,
     r: usize,

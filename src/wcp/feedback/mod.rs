@@ -97,6 +97,28 @@ impl Default for SolveOptions {
 
 /// Progress of a solve, for a progress bar. Called from the solving thread, except
 /// `move_planned`, which planning threads call.
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use std::sync::Mutex;
+/// use workcell::wcp::{prepare, solve, Collision, Progress, SolveOptions};
+/// /// Counts the moves planned and keeps each round's makespan.
+/// #[derive(Default)]
+/// struct Log { moves: AtomicUsize, rounds: Mutex<Vec<f64>> }
+/// impl Progress for Log {
+///     fn move_planned(&self) { self.moves.fetch_add(1, Ordering::Relaxed); }
+///     fn iteration(&self, _k: usize, makespan: f64, _c: Option<&Collision>) {
+///         self.rounds.lock().unwrap().push(makespan);
+///     }
+/// }
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let (opts, log) = (SolveOptions::default(), Log::default());
+/// let solved = solve(&cell, &prepare(&cell, &opts, &log)?, &opts, &log)?;
+/// assert!(log.moves.into_inner() > 0);
+/// // The last round checked is the final schedule.
+/// assert_eq!(log.rounds.into_inner().unwrap().last(), Some(&solved.schedule.makespan));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub trait Progress: Sync {
     /// Planning starts: `total` moves to plan and certify.
     fn planning(&self, _total: usize) {}
@@ -315,6 +337,14 @@ pub fn prepare(
 }
 
 /// A sequencer error in the cell's terms.
+///
+/// ```
+/// use workcell::wcp::{sequencer::SequencerError, sequencer_error};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let e = sequencer_error(&cell, SequencerError::TaskUnassignable { task: 2 });
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("weld-3"), "tasks[2]"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn sequencer_error(cell: &Cell, e: SequencerError) -> InputError {
     match e {
         SequencerError::TaskUnassignable { task } => cell.error(
@@ -354,6 +384,18 @@ pub fn solve(
 
 impl Solved {
     /// The waits at nodes of the final schedule.
+    ///
+    /// ```
+    /// use workcell::wcp::{prepare, solve, Feedback, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// // The greedy loop ends by making R2 wait at home (README, "feedback cell").
+    /// let opts = SolveOptions { feedback: Feedback::Greedy, ..SolveOptions::default() };
+    /// let solved = solve(&cell, &prepare(&cell, &opts, &())?, &opts, &())?;
+    /// let delays = solved.delays();
+    /// assert_eq!((delays.len(), delays[0].robot, delays[0].before_move), (1, 1, 0));
+    /// assert!(solved.collision_free && delays[0].duration > 0.0);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn delays(&self) -> Vec<Delay> {
         Delay::of_legs(&self.routes, &self.legs)
     }
@@ -418,6 +460,17 @@ fn build_error(
 
 /// Why the checker did not certify a schedule in which it found no collision: its work
 /// budget ran out on a pair, or two bodies graze δ too closely to prove either way.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::wcp::uncertified;
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/near-miss.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// // One evaluation per pair is not enough to prove the near miss free.
+/// let report = check(&scene, &CheckOptions { max_work_per_pair: 1, ..CheckOptions::default() });
+/// assert!(uncertified(&report).starts_with("the checker spent its work budget"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn uncertified(report: &CheckReport) -> String {
     match report.verdict() {
         Verdict::Unresolved { budget: b } => format!(
@@ -430,6 +483,19 @@ pub fn uncertified(report: &CheckReport) -> String {
 }
 
 /// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{describe, legs::default_legs, MoveStore, Schedule};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let schedule = Schedule::build(&cell, &[vec![1, 0, 2], vec![3]], &default_legs(2), &store).unwrap();
+/// let report = check(&schedule.scene(&cell), &CheckOptions::default());
+/// let line = describe(&cell, &schedule.collision(&cell, &report).expect("a collision"));
+/// assert!(line.starts_with("R1 (") && line.contains(") and R2 (") && line.contains(" at t = "), "{line}");
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn describe(cell: &Cell, c: &Collision) -> String {
     let a = format!(
         "{} ({})",

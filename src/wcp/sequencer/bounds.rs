@@ -42,6 +42,18 @@ pub struct Bounds {
 
 impl Bounds {
     /// Bounds for robots with these limits and homes, and these task poses.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// use workcell::planning::rest_to_rest_time;
+    /// // One robot at the origin, tasks at (3, 4) and (6, 8), nothing turning.
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// assert_eq!((b.robots(), b.tasks()), (1, 2));
+    /// assert_eq!(b.bound(0, 0, 1), rest_to_rest_time(5.0, 1.0, 2.0));
+    /// ```
     pub fn new(limits: Vec<BoundLimits>, homes: Vec<(Vec2, f64)>, tasks: Vec<(Vec2, f64)>) -> Self {
         assert_eq!(limits.len(), homes.len(), "one home per robot");
         Bounds {
@@ -62,6 +74,16 @@ impl Bounds {
     }
 
     /// Pose of node `node` (0 = home, `1 + t` = task `t`) for robot `r`.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// assert_eq!(b.pose(0, 0), at(0.0, 0.0)); // the home
+    /// assert_eq!(b.pose(0, 2), at(6.0, 8.0)); // task 1
+    /// ```
     #[inline]
     pub fn pose(&self, r: usize, node: usize) -> (Vec2, f64) {
         match node {
@@ -71,6 +93,18 @@ impl Bounds {
     }
 
     /// Lower bound of robot `r`'s move from node `from` to node `to`.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// use workcell::planning::rest_to_rest_time;
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// assert_eq!(b.bound(0, 1, 2), rest_to_rest_time(5.0, 1.0, 2.0));
+    /// assert_eq!(b.bound(0, 2, 1), b.bound(0, 1, 2));
+    /// assert!(b.bound(0, 0, 2) > b.bound(0, 0, 1));
+    /// ```
     #[inline]
     pub fn bound(&self, r: usize, from: usize, to: usize) -> f64 {
         let ((a, ta), (b, tb)) = (self.pose(r, from), self.pose(r, to));
@@ -84,6 +118,15 @@ impl Bounds {
 
     /// A bound at least as long as every bound: the longest straight move (the diagonal of
     /// the box around every pose) with a half-turn, for the slowest robot.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// assert!((0..3).all(|x| (0..3).all(|y| b.bound(0, x, y) <= b.longest())));
+    /// ```
     pub fn longest(&self) -> f64 {
         let poses = self.homes.iter().chain(&self.tasks).map(|p| p.0);
         let (lo, hi) = poses.fold(
@@ -103,12 +146,30 @@ impl Bounds {
     }
 
     /// Position of task `t`.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// assert_eq!(b.task_position(1), Vec2::new(6.0, 8.0));
+    /// ```
     #[inline]
     pub fn task_position(&self, t: usize) -> Vec2 {
         self.tasks[t].0
     }
 
     /// Distance between the positions of two tasks.
+    ///
+    /// ```
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// assert_eq!(b.task_distance(0, 1), 5.0);
+    /// ```
     #[inline]
     pub fn task_distance(&self, a: usize, b: usize) -> f64 {
         (self.tasks[a].0 - self.tasks[b].0).norm()

@@ -42,6 +42,18 @@ impl Instance {
     /// flags per robot; `travel` one row-major `(tasks + 1)²` matrix per robot,
     /// whose entries are >= 0 or `f64::INFINITY` (no move). The diagonal is
     /// never used.
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// let inf = f64::INFINITY;
+    /// // One robot, one task; row-major (tasks + 1)² travel matrix: home <-> task 2 each way.
+    /// let inst = Instance::new(vec![1.0], vec![vec![true]], vec![vec![0.0, 2.0, 2.0, 0.0]])?;
+    /// assert_eq!(inst.route_time(0, &[0]), 5.0);
+    /// // A missing move is allowed (infinite), a negative one is not.
+    /// assert!(Instance::new(vec![1.0], vec![vec![true]], vec![vec![0.0, inf, 2.0, 0.0]]).is_ok());
+    /// assert!(Instance::new(vec![1.0], vec![vec![true]], vec![vec![0.0, -2.0, 2.0, 0.0]]).is_err());
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn new(
         duration: Vec<f64>,
         allowed: Vec<Vec<bool>>,
@@ -86,6 +98,23 @@ impl Instance {
 
     /// An instance whose travel times are `exact` where it holds them (infinite: no move)
     /// and the lower bounds of `bounds` elsewhere. Nothing is stored per pair of nodes.
+    ///
+    /// ```
+    /// use std::{collections::HashMap, sync::Arc};
+    /// use workcell::wcp::sequencer::Instance;
+    /// use workcell::geometry::Vec2;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds};
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(3.0, 4.0), at(6.0, 8.0)]);
+    /// // The move home -> task 0 is known (9 s, around something); the others are bounds.
+    /// let exact = vec![HashMap::from([((0, 1), 9.0)])];
+    /// let inst = Instance::bounded(vec![1.0, 1.0], vec![vec![true, true]], Arc::new(b.clone()), Arc::new(exact))?;
+    /// assert_eq!((inst.travel(0, 0, 1), inst.is_exact(0, 0, 1)), (9.0, true));
+    /// assert_eq!((inst.travel(0, 1, 2), inst.is_exact(0, 1, 2)), (b.bound(0, 1, 2), false));
+    /// assert_eq!(inst.bounds(), Some(&b));
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn bounded(
         duration: Vec<f64>,
         allowed: Vec<Vec<bool>>,
@@ -130,6 +159,15 @@ impl Instance {
     }
 
     /// The lower bounds of a bounded instance.
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// // One robot, home at 0, tasks at 1 and 3 on a line (unit speed), each lasting 0.5.
+    /// let pos = [0.0, 1.0, 3.0];
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]], |_, a, b| f64::abs(pos[a] - pos[b]))?;
+    /// assert!(inst.bounds().is_none()); // matrices, not bounds
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn bounds(&self) -> Option<&Bounds> {
         match &self.travel {
             Travel::Dense(_) => None,
@@ -139,6 +177,15 @@ impl Instance {
 
     /// Whether the travel time of robot `r` from `from` to `to` is exact (always, unless
     /// the instance is bounded and does not hold it).
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// // One robot, home at 0, tasks at 1 and 3 on a line (unit speed), each lasting 0.5.
+    /// let pos = [0.0, 1.0, 3.0];
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]], |_, a, b| f64::abs(pos[a] - pos[b]))?;
+    /// assert!(inst.is_exact(0, 1, 2)); // a matrix holds every time
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn is_exact(&self, r: usize, from: usize, to: usize) -> bool {
         match &self.travel {
             Travel::Dense(_) => true,
@@ -147,6 +194,16 @@ impl Instance {
     }
 
     /// Builds the matrices from `travel(robot, from_node, to_node)`.
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// // One robot, home at 0, tasks at 1 and 3 on a line (unit speed), each lasting 0.5.
+    /// let pos = [0.0, 1.0, 3.0];
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]], |_, a, b| f64::abs(pos[a] - pos[b]))?;
+    /// assert_eq!((inst.robots, inst.tasks), (1, 2));
+    /// assert_eq!(inst.travel(0, 2, 1), 2.0);
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn from_fn(
         duration: Vec<f64>,
         allowed: Vec<Vec<bool>>,
@@ -161,6 +218,15 @@ impl Instance {
 
     /// Travel time of robot `r` from node `from` to node `to` (a lower bound where a
     /// bounded instance does not know it).
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// // One robot, home at 0, tasks at 1 and 3 on a line (unit speed), each lasting 0.5.
+    /// let pos = [0.0, 1.0, 3.0];
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]], |_, a, b| f64::abs(pos[a] - pos[b]))?;
+    /// assert_eq!((inst.travel(0, 0, 2), inst.travel(0, 1, 2)), (3.0, 2.0));
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn travel(&self, r: usize, from: usize, to: usize) -> f64 {
         match &self.travel {
             Travel::Dense(m) => m[r][from * (self.tasks + 1) + to],
@@ -175,6 +241,17 @@ impl Instance {
     /// Time robot `r` needs to do the tasks of `seq` in order and come back
     /// home (0 for an empty route; infinite if an arc is missing). The
     /// `allowed` flags are not checked.
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// // One robot, home at 0, tasks at 1 and 3 on a line (unit speed), each lasting 0.5.
+    /// let pos = [0.0, 1.0, 3.0];
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]], |_, a, b| f64::abs(pos[a] - pos[b]))?;
+    /// // 0 -> 1 -> 3 -> 0 with two tasks of 0.5: 1 + 0.5 + 2 + 0.5 + 3.
+    /// assert_eq!(inst.route_time(0, &[0, 1]), 7.0);
+    /// assert_eq!(inst.route_time(0, &[]), 0.0);
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn route_time(&self, r: usize, seq: &[usize]) -> f64 {
         // Summed left to right, as the exact search does, so equal plans cost
         // exactly the same whichever way they were found.
@@ -192,6 +269,17 @@ impl Instance {
     }
 
     /// Longest route time; `seqs[r]` is robot `r`'s route (missing robots stay home).
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// // Two robots with homes at 0 and 4, tasks at 1 and 3 on a line, each lasting 0.5.
+    /// let (homes, tasks) = ([0.0, 4.0], [1.0, 3.0]);
+    /// let at = |r: usize, n: usize| if n == 0 { homes[r] } else { tasks[n - 1] };
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]; 2], |r, a, b| f64::abs(at(r, a) - at(r, b)))?;
+    /// assert_eq!(inst.makespan(&[vec![0], vec![1]]), 2.5);
+    /// assert_eq!(inst.makespan(&[vec![0, 1]]), 7.0); // robot 1 left out: it stays home
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn makespan(&self, seqs: &[Vec<usize>]) -> f64 {
         seqs.iter()
             .enumerate()
@@ -200,6 +288,15 @@ impl Instance {
     }
 
     /// Sum of the route times, in robot order.
+    ///
+    /// ```
+    /// use workcell::wcp::sequencer::Instance;
+    /// let (homes, tasks) = ([0.0, 4.0], [1.0, 3.0]);
+    /// let at = |r: usize, n: usize| if n == 0 { homes[r] } else { tasks[n - 1] };
+    /// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]; 2], |r, a, b| f64::abs(at(r, a) - at(r, b)))?;
+    /// assert_eq!(inst.total(&[vec![0], vec![1]]), 5.0); // 2.5 each
+    /// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+    /// ```
     pub fn total(&self, seqs: &[Vec<usize>]) -> f64 {
         seqs.iter()
             .enumerate()

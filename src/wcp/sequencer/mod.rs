@@ -166,6 +166,13 @@ pub enum SequencerError {
 /// The steps a route uses: `Stay{0}` (home, always), `Move{0, 1+t1}`,
 /// `Stay{1+t1}`, `Move{1+t1, 1+t2}`, …, `Move{1+tk, 0}`.
 /// An empty route uses only `Stay{0}`.
+///
+/// ```
+/// use workcell::wcp::sequencer::{steps, Step};
+/// let (stay, go) = (|node| Step::Stay { node }, |from, to| Step::Move { from, to });
+/// assert_eq!(steps(&[2, 0]), [stay(0), go(0, 3), stay(3), go(3, 1), stay(1), go(1, 0)]);
+/// assert_eq!(steps(&[]), [stay(0)]);
+/// ```
 pub fn steps(route: &[usize]) -> Vec<Step> {
     let mut out = Vec::with_capacity(2 * route.len() + 2);
     out.push(Step::Stay { node: 0 });
@@ -187,6 +194,15 @@ pub fn steps(route: &[usize]) -> Vec<Step> {
 /// Number of `conflicts` violated by `sequences` (one route per robot): robot
 /// `a.0` uses step `a.1` and robot `b.0` uses step `b.1`. Robots beyond
 /// `sequences` use no step.
+///
+/// ```
+/// use workcell::wcp::sequencer::{count_violations, Conflict, Step};
+/// // Robot 0 at task 0 (node 1) and robot 1 at task 1 (node 2) may not both happen.
+/// let c = Conflict { a: (0, Step::Stay { node: 1 }), b: (1, Step::Stay { node: 2 }) };
+/// assert_eq!(count_violations(&[c], &[vec![0], vec![1]]), 1);
+/// assert_eq!(count_violations(&[c], &[vec![0, 1], vec![]]), 0);
+/// assert_eq!(count_violations(&[c], &[vec![0]]), 0); // robot 1 does nothing
+/// ```
 pub fn count_violations(conflicts: &[Conflict], sequences: &[Vec<usize>]) -> usize {
     let used: Vec<HashSet<Step>> = sequences
         .iter()
@@ -200,6 +216,23 @@ pub fn count_violations(conflicts: &[Conflict], sequences: &[Vec<usize>]) -> usi
 /// total route time) lexicographically.
 ///
 /// The result is deterministic for a given input and `opts.seed`.
+///
+/// ```
+/// use workcell::wcp::sequencer::solve;
+/// use workcell::wcp::sequencer::{Conflict, Instance, SequencerOptions, Step};
+/// // Two robots with homes at 0 and 4, tasks at 1 and 3 on a line, each lasting 0.5.
+/// let (homes, tasks) = ([0.0, 4.0], [1.0, 3.0]);
+/// let at = |r: usize, n: usize| if n == 0 { homes[r] } else { tasks[n - 1] };
+/// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]; 2], |r, a, b| f64::abs(at(r, a) - at(r, b)))?;
+/// // The checker forbids robot 0 at task 0 while robot 1 is at task 1.
+/// let conflict = Conflict { a: (0, Step::Stay { node: 1 }), b: (1, Step::Stay { node: 2 }) };
+/// let free = solve(&inst, &[], &SequencerOptions::default())?;
+/// assert_eq!((free.sequences.clone(), free.makespan), (vec![vec![0], vec![1]], 2.5));
+/// let apart = solve(&inst, &[conflict], &SequencerOptions::default())?;
+/// assert_eq!(apart.violations, 0);
+/// assert!(apart.makespan > 2.5); // one robot now does both tasks
+/// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+/// ```
 pub fn solve(
     inst: &Instance,
     conflicts: &[Conflict],
@@ -212,6 +245,27 @@ pub fn solve(
 /// starts from `start` (one route per robot, as [`Solution::sequences`]) when given.
 /// `on_best` hears each makespan that improves a restart's best (from any thread; infinite
 /// travel times count as a large penalty there).
+///
+/// ```
+/// use std::sync::Mutex;
+/// use workcell::wcp::sequencer::solve_from;
+/// use workcell::wcp::sequencer::{Conflict, Instance, SequencerOptions, Step};
+/// // Two robots with homes at 0 and 4, tasks at 1 and 3 on a line, each lasting 0.5.
+/// let (homes, tasks) = ([0.0, 4.0], [1.0, 3.0]);
+/// let at = |r: usize, n: usize| if n == 0 { homes[r] } else { tasks[n - 1] };
+/// let inst = Instance::from_fn(vec![0.5, 0.5], vec![vec![true, true]; 2], |r, a, b| f64::abs(at(r, a) - at(r, b)))?;
+/// // The checker forbids robot 0 at task 0 while robot 1 is at task 1.
+/// let conflict = Conflict { a: (0, Step::Stay { node: 1 }), b: (1, Step::Stay { node: 2 }) };
+/// // Beyond the exact search (exact_limit 0), from a given start.
+/// let opts = SequencerOptions { exact_limit: 0, ..SequencerOptions::default() };
+/// let heard = Mutex::new(Vec::new());
+/// let start = [vec![0, 1], vec![]];
+/// let sol = solve_from(&inst, &[conflict], &opts, Some(&start), &|m| heard.lock().unwrap().push(m))?;
+/// assert_eq!(sol.violations, 0);
+/// assert!(sol.makespan <= inst.makespan(&start));
+/// assert!(heard.into_inner().unwrap().iter().all(|&m| m >= sol.makespan));
+/// # Ok::<(), workcell::wcp::sequencer::SequencerError>(())
+/// ```
 pub fn solve_from(
     inst: &Instance,
     conflicts: &[Conflict],

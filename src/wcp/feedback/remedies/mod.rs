@@ -103,6 +103,15 @@ impl Remedies {
     ];
 
     /// The set of the names given (each one of [`Remedies::NAMES`]).
+    ///
+    /// ```
+    /// use workcell::wcp::Remedies;
+    /// let some = Remedies::of_names(["resequence", "pause"])?;
+    /// assert!(some.resequence && some.pause && !some.wait && !some.step_aside);
+    /// assert_eq!(Remedies::of_names(Remedies::NAMES)?, Remedies::ALL);
+    /// assert!(Remedies::of_names(["teleport"]).unwrap_err().contains("unknown remedy"));
+    /// # Ok::<(), String>(())
+    /// ```
     pub fn of_names<'s>(names: impl IntoIterator<Item = &'s str>) -> Result<Remedies, String> {
         let mut set = Remedies {
             resequence: false,
