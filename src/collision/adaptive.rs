@@ -85,9 +85,10 @@ fn search_with(
     let duration = span.t1 - span.t0;
     let radii = (a.shape.radius(), b.shape.radius());
     stack.clear();
-    stack.push(ends);
+    // The whole interval first, without a trip through the stack (two probes are large).
+    let mut whole = Some(ends);
     let mut grazes = PendingGrazes::default();
-    while let Some((l, r)) = stack.pop() {
+    while let Some((l, r)) = whole.take().or_else(|| stack.pop()) {
         if s.out_of_work(stats) {
             // Everything before `l` is proven (grazes aside).
             grazes.accept(stats);

@@ -3,7 +3,7 @@
 
 use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
 use super::method::Scratch;
-use super::pair::{PairCheck, SharedLimit, Started};
+use super::pair::{PairCheck, SharedLimit};
 use super::span::PairSettings;
 use super::{Method, Scene, Stats};
 use crate::cell::{check_precision, InputError};
@@ -318,9 +318,8 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
             &limit,
         )
     };
-    let finish = |scratch: &mut Scratch, started| match started {
-        Started::Running(pair) => pair.finish(opts.method, &settings, &limit, scratch),
-        Started::Done(done) => done,
+    let finish = |scratch: &mut Scratch, pair: &mut PairCheck| {
+        pair.finish(opts.method, &settings, &limit, scratch);
     };
     // Decided by the work, not the number of pairs: many short pairs are quicker on one
     // thread, a few long ones are not.
@@ -328,30 +327,27 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         .iter()
         .map(|&(i, j)| sample_count(&scene.bodies[i]) + sample_count(&scene.bodies[j]) + 1)
         .sum();
-    let outcomes: Vec<_> = if pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS {
-        let started: Vec<_> = pairs.par_iter().map(start).collect();
-        started
-            .into_par_iter()
-            .map_init(Scratch::default, finish)
-            .collect()
+    // Each pair's state stays where it started until the report is made.
+    let mut checks: Vec<PairCheck>;
+    if pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS {
+        checks = pairs.par_iter().map(start).collect();
+        checks
+            .par_iter_mut()
+            .for_each_init(Scratch::default, finish);
     } else {
-        let started: Vec<_> = pairs.iter().map(start).collect();
+        checks = pairs.iter().map(start).collect();
         let mut scratch = Scratch::default();
-        started
-            .into_iter()
-            .map(|p| finish(&mut scratch, p))
-            .collect()
-    };
+        checks.iter_mut().for_each(|p| finish(&mut scratch, p));
+    }
+    let outcomes = || checks.iter().map(PairCheck::outcome);
     // Earliest contact; ties go to the first pair in report order.
-    let contact = outcomes
-        .iter()
+    let contact = outcomes()
         .zip(&pairs)
         .filter_map(|(o, p)| o.contact.map(|c| (c, p)))
         .min_by(|x, y| x.0.time.total_cmp(&y.0.time));
     // Earliest budget run out, which hides whatever comes after it; a contact at the same
     // time wins.
-    let exhausted = outcomes
-        .iter()
+    let exhausted = outcomes()
         .zip(&pairs)
         .filter(|(o, _)| o.out_of_work)
         .map(|(o, p)| (o.safe_until, p))
@@ -366,24 +362,21 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let names =
         |(i, j): (usize, usize)| [scene.bodies[i].name.clone(), scene.bodies[j].name.clone()];
     let mut stats = Stats::default();
-    for o in &outcomes {
-        stats += o.stats_through(through);
+    for c in &checks {
+        stats += c.stats_through(through);
     }
     let pair_stats = opts.per_pair.then(|| {
-        outcomes
+        checks
             .iter()
             .zip(&pairs)
-            .map(|(o, &p)| PairStats {
+            .map(|(c, &p)| PairStats {
                 bodies: names(p),
-                merged_intervals: o.merged_intervals,
-                stats: o.stats_through(through),
+                merged_intervals: c.merged_intervals(),
+                stats: c.stats_through(through),
             })
             .collect()
     });
-    let safe_until = outcomes
-        .iter()
-        .map(|o| o.safe_until)
-        .fold(horizon.1, f64::min);
+    let safe_until = outcomes().map(|o| o.safe_until).fold(horizon.1, f64::min);
     CheckReport {
         collision: first.is_some(),
         certified: opts.method.proves_free()

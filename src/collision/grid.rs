@@ -9,6 +9,7 @@ use crate::motion::{Motion, Pose};
 
 /// One body's place in its own grid: the number of its samples at or before the time last
 /// yielded.
+#[derive(Clone)]
 struct Cursor<'a> {
     motion: &'a Motion,
     times: &'a [crate::motion::Sample],
@@ -52,6 +53,7 @@ impl<'a> Cursor<'a> {
 /// The union of both bodies' sample times strictly inside the horizon, with the horizon's
 /// ends, in increasing order and without repeats; each time with both poses. On each
 /// interval between consecutive times both poses are linear in time.
+#[derive(Clone)]
 pub(super) struct MergedGrid<'a> {
     a: Cursor<'a>,
     b: Cursor<'a>,

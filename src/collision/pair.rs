@@ -20,7 +20,7 @@ pub struct PairContact {
 }
 
 /// What the check of one pair found.
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct PairOutcome {
     /// The pair's first contact, if it has one before the shared limit.
     pub contact: Option<PairContact>,
@@ -28,24 +28,6 @@ pub struct PairOutcome {
     pub safe_until: f64,
     /// Whether the work budget ran out at `safe_until`, neither proof nor witness beyond.
     pub out_of_work: bool,
-    /// Number of merged intervals of the pair over the whole horizon.
-    pub merged_intervals: usize,
-    /// `(start of merged interval, counters before it)`, for every interval examined.
-    log: Vec<(f64, Stats)>,
-    /// All the work done.
-    total: Stats,
-}
-
-impl PairOutcome {
-    /// The work done on the merged intervals that start at or before `t`. When `t` is the
-    /// scene's first contact, this does not depend on how the pairs were scheduled on
-    /// threads: every pair examines those intervals whatever the others found.
-    pub fn stats_through(&self, t: f64) -> Stats {
-        match self.log.iter().find(|(start, _)| *start > t) {
-            Some((_, before)) => *before,
-            None => self.total,
-        }
-    }
 }
 
 /// The earliest contact time found so far by any pair, shared between threads: once a
@@ -89,46 +71,27 @@ pub fn check_pair(
     limit: &SharedLimit,
     scratch: &mut Scratch,
 ) -> PairOutcome {
-    match PairCheck::start(a, b, horizon, s, limit) {
-        Started::Running(pair) => pair.finish(method, s, limit, scratch),
-        Started::Done(done) => done,
-    }
+    PairCheck::start(a, b, horizon, s, limit).finish(method, s, limit, scratch)
 }
 
-/// A pair check evaluated at the horizon's start and not yet further: a scene starts every
-/// pair before it runs any, so that a contact at the start stops all of them there.
+/// One pair's check: evaluated at the horizon's start by [`PairCheck::start`], run on by
+/// [`PairCheck::finish`], and asked for its counters once the scene's first event is known.
+/// A scene starts every pair before it runs any, so that a contact at the start stops all of
+/// them there; each pair's state stays in place from its start to the report.
 pub struct PairCheck<'a> {
     grid: MergedGrid<'a>,
     eta: Eta<'a>,
+    /// All the work done so far.
     stats: Stats,
+    /// The left end of the next merged interval, free.
     left: Probe,
-}
-
-/// A pair after [`PairCheck::start`].
-pub enum Started<'a> {
-    /// Free at the start: the check goes on.
-    Running(PairCheck<'a>),
-    /// In contact at the start: its outcome.
-    Done(PairOutcome),
-}
-
-fn outcome(
-    contact: Option<PairContact>,
-    safe_until: f64,
-    log: Vec<(f64, Stats)>,
-    total: Stats,
+    /// Merged intervals whose right end the grid has given.
     reached: usize,
-    rest: MergedGrid,
-) -> PairOutcome {
-    PairOutcome {
-        contact,
-        safe_until,
-        out_of_work: false,
-        // Counting the intervals not examined walks the rest of the grid, without poses.
-        merged_intervals: reached + rest.count_rest(),
-        log,
-        total,
-    }
+    /// `(start of merged interval, counters before it)` for every interval examined but the
+    /// first: that one starts at the horizon's start, at or before any time asked about.
+    log: Vec<(f64, Stats)>,
+    /// What the check found, once it is over.
+    found: Option<PairOutcome>,
 }
 
 fn contact(limit: &SharedLimit, p: &Probe, interval: usize) -> Option<PairContact> {
@@ -141,74 +104,91 @@ fn contact(limit: &SharedLimit, p: &Probe, interval: usize) -> Option<PairContac
 }
 
 impl<'a> PairCheck<'a> {
-    /// Evaluates the pair at the horizon's start; its outcome when it is in contact there.
+    /// Evaluates the pair at the horizon's start; the check is over when it is in contact
+    /// there.
     pub fn start(
         a: &'a Body,
         b: &'a Body,
         horizon: (f64, f64),
         s: &PairSettings,
         limit: &SharedLimit,
-    ) -> Started<'a> {
+    ) -> Self {
         let mut grid = MergedGrid::new(a, b, horizon);
         let mut eta = Eta::new(a, b, s.delta, s.walk);
         let mut stats = Stats::default();
         let (t, poses) = grid.next().expect("a grid holds the horizon's start");
         let left = eta.at(t, poses, &mut stats);
-        if left.eta < s.delta {
-            return Started::Done(outcome(
-                contact(limit, &left, 1),
-                left.t,
-                Vec::new(),
-                stats,
-                0,
-                grid,
-            ));
-        }
-        Started::Running(PairCheck {
+        let found = (left.eta < s.delta).then(|| PairOutcome {
+            contact: contact(limit, &left, 1),
+            safe_until: left.t,
+            out_of_work: false,
+        });
+        PairCheck {
             grid,
             eta,
             stats,
             left,
-        })
+            reached: 0,
+            log: Vec::new(),
+            found,
+        }
     }
 
     /// The rest of the check, from the horizon's start, each merged interval searched by
-    /// `method`.
+    /// `method`; what it found.
     pub fn finish(
-        self,
+        &mut self,
+        method: Method,
+        s: &PairSettings,
+        limit: &SharedLimit,
+        scratch: &mut Scratch,
+    ) -> PairOutcome {
+        if self.found.is_none() {
+            self.found = Some(self.run(method, s, limit, scratch));
+        }
+        self.found.expect("set above")
+    }
+
+    fn run(
+        &mut self,
         method: Method,
         s: &PairSettings,
         limit: &SharedLimit,
         scratch: &mut Scratch,
     ) -> PairOutcome {
         let PairCheck {
-            mut grid,
-            mut eta,
-            mut stats,
-            mut left,
+            grid,
+            eta,
+            stats,
+            left,
+            reached,
+            log,
+            ..
         } = self;
-        // Pairs that stop at an early contact log a few intervals: grow as needed.
-        let mut log = Vec::new();
-        // Merged intervals whose right end the grid has given.
-        let mut reached = 0;
+        let free = |safe_until| PairOutcome {
+            contact: None,
+            safe_until,
+            out_of_work: false,
+        };
         while let Some((t, poses)) = grid.next() {
-            reached += 1;
+            *reached += 1;
             if left.t > limit.get() {
-                return outcome(None, left.t, log, stats, reached, grid);
+                return free(left.t);
             }
-            let k = reached;
-            log.push((left.t, stats));
+            let k = *reached;
+            if k > 1 {
+                log.push((left.t, *stats));
+            }
             stats.intervals += 1;
-            let right = eta.at(t, poses, &mut stats);
+            let right = eta.at(t, poses, stats);
             let span = Span {
                 t0: left.t,
                 t1: t,
                 a: (left.pose_a, right.pose_a),
                 b: (left.pose_b, right.pose_b),
             };
-            let ends = (Probe { u: 0.0, ..left }, Probe { u: 1.0, ..right });
-            let searched = method.search(&mut eta, &span, ends, s, scratch, &mut stats);
-            match searched {
+            let ends = (Probe { u: 0.0, ..*left }, Probe { u: 1.0, ..right });
+            match method.search(eta, &span, ends, s, scratch, stats) {
                 Ok(()) => {}
                 Err(Stop::Contact(witness, safe_until)) => {
                     // Never report a contact before its witness.
@@ -216,20 +196,44 @@ impl<'a> PairCheck<'a> {
                         t: span.time_after(witness.u),
                         ..witness
                     };
-                    let found = contact(limit, &witness, k);
-                    return outcome(found, safe_until, log, stats, k, grid);
+                    return PairOutcome {
+                        contact: contact(limit, &witness, k),
+                        ..free(safe_until)
+                    };
                 }
                 Err(Stop::OutOfWork(safe_until)) => {
                     // Nothing after this can be the scene's first event: no pair need look on.
                     limit.lower_to(safe_until);
                     return PairOutcome {
                         out_of_work: true,
-                        ..outcome(None, safe_until, log, stats, k, grid)
+                        ..free(safe_until)
                     };
                 }
             }
-            left = right;
+            *left = right;
         }
-        outcome(None, left.t, log, stats, reached, grid)
+        free(left.t)
+    }
+
+    /// What the check found, once [`PairCheck::finish`] ran or the start was a contact.
+    pub fn outcome(&self) -> PairOutcome {
+        self.found.expect("a pair check over")
+    }
+
+    /// The work done on the merged intervals that start at or before `t`, a time at or after
+    /// the horizon's start. When `t` is the scene's first event, this does not depend on how
+    /// the pairs were scheduled on threads: every pair examines those intervals whatever the
+    /// others found.
+    pub fn stats_through(&self, t: f64) -> Stats {
+        match self.log.iter().find(|(start, _)| *start > t) {
+            Some((_, before)) => *before,
+            None => self.stats,
+        }
+    }
+
+    /// Number of merged intervals of the pair over the whole horizon. Counting those not
+    /// examined walks the rest of the grid, without poses: only reports that list pairs ask.
+    pub fn merged_intervals(&self) -> usize {
+        self.reached + self.grid.clone().count_rest()
     }
 }

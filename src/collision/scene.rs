@@ -181,10 +181,14 @@ impl Scene {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn horizon(&self) -> (f64, f64) {
-        let times = || self.bodies.iter().flat_map(|b| b.motion.times());
-        match times().next() {
+        // A trajectory's times strictly increase: its first and last samples are its ends.
+        let mut ends = self.bodies.iter().filter_map(|b| match &b.motion {
+            Motion::Sampled(tr) => Some((tr.samples().first()?.t, tr.samples().last()?.t)),
+            Motion::Fixed(_) => None,
+        });
+        match ends.next() {
             None => (0.0, 0.0),
-            Some(t0) => times().fold((t0, t0), |(lo, hi), t| (lo.min(t), hi.max(t))),
+            Some(first) => ends.fold(first, |(lo, hi), (t0, t1)| (lo.min(t0), hi.max(t1))),
         }
     }
 
@@ -207,18 +211,14 @@ impl Scene {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn pairs(&self) -> Vec<(usize, usize)> {
-        let robots: Vec<usize> = (0..self.bodies.len())
-            .filter(|&i| self.bodies[i].is_robot())
-            .collect();
-        let obstacles: Vec<usize> = (0..self.bodies.len())
-            .filter(|&i| !self.bodies[i].is_robot())
-            .collect();
-        let mut pairs = Vec::new();
-        for (k, &i) in robots.iter().enumerate() {
-            pairs.extend(robots[k + 1..].iter().map(|&j| (i, j)));
+        let n = self.bodies.len();
+        let robot = |i: &usize| self.bodies[*i].is_robot();
+        let mut pairs = Vec::with_capacity(self.pair_count());
+        for i in (0..n).filter(robot) {
+            pairs.extend((i + 1..n).filter(robot).map(|j| (i, j)));
         }
-        for &i in &robots {
-            pairs.extend(obstacles.iter().map(|&j| (i, j)));
+        for i in (0..n).filter(robot) {
+            pairs.extend((0..n).filter(|j| !robot(j)).map(|j| (i, j)));
         }
         pairs
     }
