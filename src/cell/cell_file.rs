@@ -123,6 +123,16 @@ pub struct Cell {
 
 impl Cell {
     /// The obstacles as checker bodies.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/hall-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// let bodies = cell.obstacle_bodies();
+    /// assert_eq!(bodies.len(), cell.obstacles.len());
+    /// assert!(bodies.iter().all(|b| !b.is_robot()));
+    /// assert_eq!(bodies[0].name, cell.obstacles[0].name);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn obstacle_bodies(&self) -> Vec<Body> {
         self.obstacles
             .iter()
@@ -131,6 +141,15 @@ impl Cell {
     }
 
     /// An error about this cell's file.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// let e = cell.error(Some("R1"), "robots[0].home", "in the way");
+    /// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("R1"), "robots[0].home"));
+    /// assert!(e.to_string().contains("feedback-cell.json"));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
     pub fn error(
         &self,
         body: Option<&str>,

@@ -37,6 +37,15 @@ impl Method {
     pub const DEFAULT: Method = Method::Adaptive(BoundKind::Rigorous);
 
     /// Whether a collision-free verdict of this method is a proof (up to grazes).
+    ///
+    /// ```
+    /// use workcell::collision::Method;
+    /// assert!(Method::DEFAULT.proves_free());
+    /// // Sampling and the paper's velocity-based bound can miss a collision between samples.
+    /// assert!(!"sampled:0.01".parse::<Method>()?.proves_free());
+    /// assert!(!"adaptive-paper".parse::<Method>()?.proves_free());
+    /// # Ok::<(), String>(())
+    /// ```
     pub fn proves_free(self) -> bool {
         !matches!(
             self,
