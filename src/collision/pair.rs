@@ -170,7 +170,7 @@ impl<'a> PairCheck<'a> {
             safe_until,
             out_of_work: false,
         };
-        while let Some((t, poses)) = grid.next() {
+        for (t, poses) in grid.by_ref() {
             *reached += 1;
             if left.t > limit.get() {
                 return free(left.t);
