@@ -5,6 +5,7 @@ mod cell_build;
 mod cell_checks;
 mod cell_file;
 mod error;
+mod json_cursor;
 mod legs_file;
 mod object_only;
 mod precision;

@@ -25,6 +25,24 @@ pub(super) struct Point {
     len: usize,
 }
 
+impl Point {
+    /// No number yet.
+    pub(super) fn empty() -> Self {
+        Point {
+            xy: [0.0; 2],
+            len: 0,
+        }
+    }
+
+    /// The next number of the vertex.
+    pub(super) fn push(&mut self, v: f64) {
+        if let Some(slot) = self.xy.get_mut(self.len) {
+            *slot = v;
+        }
+        self.len += 1;
+    }
+}
+
 impl<'de> Deserialize<'de> for Point {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct Numbers;
@@ -38,15 +56,9 @@ impl<'de> Deserialize<'de> for Point {
                 self,
                 mut seq: A,
             ) -> Result<Point, A::Error> {
-                let mut p = Point {
-                    xy: [0.0; 2],
-                    len: 0,
-                };
+                let mut p = Point::empty();
                 while let Some(v) = seq.next_element::<f64>()? {
-                    if let Some(slot) = p.xy.get_mut(p.len) {
-                        *slot = v;
-                    }
-                    p.len += 1;
+                    p.push(v);
                 }
                 Ok(p)
             }

@@ -34,13 +34,42 @@ struct RawSample {
     x: f64,
     y: f64,
     #[serde(default)]
-    vx: Option<f64>,
+    vx: Optional,
     #[serde(default)]
-    vy: Option<f64>,
+    vy: Optional,
     #[serde(default)]
-    theta: Option<f64>,
+    theta: Optional,
     #[serde(default)]
-    omega: Option<f64>,
+    omega: Optional,
+}
+
+/// A sample's optional number in 8 bytes where `Option<f64>` takes 16 (samples are most of
+/// a scene's memory while it is read): NaN when absent, which JSON cannot hold.
+#[derive(Clone, Copy)]
+struct Optional(f64);
+
+impl Optional {
+    fn get(self) -> Option<f64> {
+        (!self.0.is_nan()).then_some(self.0)
+    }
+}
+
+impl From<Option<f64>> for Optional {
+    fn from(v: Option<f64>) -> Self {
+        Optional(v.unwrap_or(f64::NAN))
+    }
+}
+
+impl Default for Optional {
+    fn default() -> Self {
+        None.into()
+    }
+}
+
+impl<'de> Deserialize<'de> for Optional {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Option::<f64>::deserialize(d).map(Into::into)
+    }
 }
 
 #[derive(Deserialize)]
@@ -104,8 +133,17 @@ pub fn load_scene(path: &Path) -> Result<LoadedScene, InputError> {
 /// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("A"), "robots[0].trajectory[1].x"));
 /// ```
 pub fn parse_scene(text: &str, file: &Path) -> Result<LoadedScene, InputError> {
-    let raw: RawScene =
-        document(text, file, "scene").map_err(|e| cell_instead(text, file).unwrap_or(e))?;
+    // The one-pass reader takes what scene files usually hold; serde reads the rest, and
+    // names what is wrong.
+    let raw = match fast::scene(text) {
+        Some(raw) => raw,
+        None => document(text, file, "scene").map_err(|e| cell_instead(text, file).unwrap_or(e))?,
+    };
+    build(raw, file)
+}
+
+/// The scene of a document read, validated.
+fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
     let delta = delta(raw.delta, file)?;
     let mut warnings = Vec::new();
     let mut names = HashSet::new();
@@ -200,7 +238,217 @@ fn check_name(
 fn trajectory(raw: &[RawSample]) -> Result<Trajectory, TrajectoryError> {
     let samples = raw
         .iter()
-        .map(|s| Sample::at(s.t, Pose::new(s.x, s.y, s.theta.unwrap_or(0.0))))
+        .map(|s| Sample::at(s.t, Pose::new(s.x, s.y, s.theta.get().unwrap_or(0.0))))
         .collect();
-    Trajectory::with_given_velocities(samples, |k| [raw[k].vx, raw[k].vy, raw[k].omega])
+    Trajectory::with_given_velocities(samples, |k| {
+        let s = &raw[k];
+        [s.vx.get(), s.vy.get(), s.omega.get()]
+    })
+}
+
+/// The scene document read in one pass by [`Cursor`], into the records serde would make of
+/// it: unknown keys skipped, a key given twice or anything the cursor leaves to serde
+/// (`None`) read again by serde.
+mod fast {
+    use super::super::json_cursor::{once, Cursor};
+    use super::super::reading::Point;
+    use super::{RawObstacle, RawRobot, RawSample, RawScene};
+
+    pub(super) fn scene(text: &str) -> Option<RawScene> {
+        let mut c = Cursor::new(text);
+        let (mut delta, mut robots, mut obstacles) = (None, None, None);
+        // Robots of one scene mostly have as many samples: room for as many as the last.
+        let mut samples = 0;
+        c.object(|c, key| match key {
+            "delta" => once(&mut delta, c.number()),
+            "robots" => once(&mut robots, list(c, 0, |c| robot(c, &mut samples))),
+            "obstacles" => once(&mut obstacles, list(c, 0, obstacle)),
+            _ => c.skip(),
+        })?;
+        c.end()?;
+        Some(RawScene {
+            delta,
+            robots: robots?,
+            obstacles: obstacles.unwrap_or_default(),
+        })
+    }
+
+    fn list<'a, T>(
+        c: &mut Cursor<'a>,
+        capacity: usize,
+        mut item: impl FnMut(&mut Cursor<'a>) -> Option<T>,
+    ) -> Option<Vec<T>> {
+        let mut items = Vec::with_capacity(capacity);
+        c.array(|c| {
+            items.push(item(c)?);
+            Some(())
+        })?;
+        Some(items)
+    }
+
+    fn robot(c: &mut Cursor, samples: &mut usize) -> Option<RawRobot> {
+        let (mut name, mut shape, mut trajectory) = (None, None, None);
+        c.object(|c, key| match key {
+            "name" => once(&mut name, c.string().map(str::to_owned)),
+            "shape" => once(&mut shape, list(c, 0, vertex)),
+            "trajectory" => {
+                once(&mut trajectory, list(c, *samples, sample))?;
+                *samples = trajectory.as_ref().map_or(0, Vec::len);
+                Some(())
+            }
+            _ => c.skip(),
+        })?;
+        Some(RawRobot {
+            name: name?,
+            shape: shape?,
+            trajectory: trajectory?,
+        })
+    }
+
+    fn obstacle(c: &mut Cursor) -> Option<RawObstacle> {
+        let (mut name, mut shape) = (None, None);
+        c.object(|c, key| match key {
+            "name" => once(&mut name, c.string().map(str::to_owned)),
+            "shape" => once(&mut shape, list(c, 0, vertex)),
+            _ => c.skip(),
+        })?;
+        Some(RawObstacle {
+            name: name?,
+            shape: shape?,
+        })
+    }
+
+    fn vertex(c: &mut Cursor) -> Option<Point> {
+        let mut p = Point::empty();
+        c.array(|c| {
+            p.push(c.number()?);
+            Some(())
+        })?;
+        Some(p)
+    }
+
+    fn sample(c: &mut Cursor) -> Option<RawSample> {
+        let [mut t, mut x, mut y, mut vx, mut vy, mut theta, mut omega] = [None; 7];
+        c.object(|c, key| {
+            let slot = match key {
+                "t" => &mut t,
+                "x" => &mut x,
+                "y" => &mut y,
+                "vx" => &mut vx,
+                "vy" => &mut vy,
+                "theta" => &mut theta,
+                "omega" => &mut omega,
+                _ => return c.skip(),
+            };
+            once(slot, c.number())
+        })?;
+        Some(RawSample {
+            t: t?,
+            x: x?,
+            y: y?,
+            vx: vx.into(),
+            vy: vy.into(),
+            theta: theta.into(),
+            omega: omega.into(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::{json, Value};
+
+    /// The scene the one-pass reader reads (when it does), and serde's, as text: Debug
+    /// prints each f64 by its shortest round-trip digits, so bits must agree.
+    fn both(text: &str) -> (Option<String>, String) {
+        let file = Path::new("s.json");
+        let shown = |r: Result<LoadedScene, InputError>| match r {
+            Ok(loaded) => format!("{:?}", loaded.scene),
+            Err(e) => e.to_string(),
+        };
+        let fast = fast::scene(text).map(|raw| shown(build(raw, file)));
+        let serde = shown(document(text, file, "scene").and_then(|raw| build(raw, file)));
+        (fast, serde)
+    }
+
+    fn scene_files() -> Vec<String> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut texts = Vec::new();
+        for dir in ["tests/corpus", "cells"] {
+            for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+                let path = entry.unwrap().path();
+                let text = std::fs::read_to_string(&path).unwrap_or_default();
+                if path.extension().is_some_and(|e| e == "json") && text.contains("trajectory") {
+                    texts.push(text);
+                }
+            }
+        }
+        texts
+    }
+
+    /// Every shipped and corpus scene, and each rewritten with its keys in another order,
+    /// pretty-printed, with keys the format does not know and with `null` velocities: the
+    /// one-pass reader reads the same scene as serde, bit for bit, or leaves it to serde.
+    #[test]
+    fn the_one_pass_reader_reads_what_serde_reads() {
+        let texts = scene_files();
+        assert!(texts.len() >= 50, "{} scenes", texts.len());
+        let mut read_fast = 0;
+        for text in &texts {
+            let doc: Value = serde_json::from_str(text).unwrap();
+            let mut extra = doc.clone();
+            extra["note"] = json!({"a": [1, "x", {"b": [], "c": -2.5e-3}]});
+            for robot in extra["robots"].as_array_mut().unwrap() {
+                robot["colour"] = json!("red");
+                robot["trajectory"][0]["tag"] = json!([[0]]);
+            }
+            let mut nulls = doc.clone();
+            nulls["robots"][0]["trajectory"][0]["vx"] = Value::Null;
+            let variants = [
+                text.clone(),
+                doc.to_string(), // keys sorted
+                serde_json::to_string_pretty(&doc).unwrap(),
+                extra.to_string(),
+                nulls.to_string(),
+            ];
+            for (k, v) in variants.iter().enumerate() {
+                let (fast, serde) = both(v);
+                match fast {
+                    Some(fast) => {
+                        assert_eq!(fast, serde, "variant {k}");
+                        read_fast += 1;
+                    }
+                    None => assert_eq!(k, 4, "only `null` is left to serde:\n{v}"),
+                }
+            }
+        }
+        assert_eq!(read_fast, 4 * texts.len());
+    }
+
+    /// What the one-pass reader leaves to serde, or refuses, reads as before.
+    #[test]
+    fn anything_else_is_left_to_serde() {
+        let ok = r#"{"robots": [{"name": "A", "shape": [[0,0],[1,0],[1,1]],
+                     "trajectory": [{"t": 0, "x": 0, "y": 0}, {"t": 1, "x": 1, "y": 0}]}]}"#;
+        assert!(fast::scene(ok).is_some());
+        for (from, to) in [
+            ("\"A\"", "\"\\u0041\""),                      // an escape
+            ("\"t\": 1", "\"t\": 1, \"t\": 2"),            // a key twice
+            ("\"t\": 1", "\"t\": \"1\""),                  // a string for a number
+            ("\"y\": 0}]", "\"y\": 1e999}]"),              // beyond f64
+            ("[[0,0],", "[[0,0,0],"),                      // three numbers
+            ("[{\"name\"", "[{\"x\": true, \"name\""),     // a literal
+            ("\"robots\"", "\"delta\": null, \"robots\""), // null
+        ] {
+            let text = ok.replacen(from, to, 1);
+            assert_ne!(text, ok);
+            let (fast, serde) = both(&text);
+            assert_eq!(fast.as_ref().filter(|f| *f != &serde), None, "{text}");
+            if fast.is_some() {
+                // A vertex of three numbers is read as serde reads it, then refused alike.
+                assert!(serde.contains("shape[0]"), "{serde}");
+            }
+        }
+    }
 }

@@ -141,7 +141,7 @@ impl Trajectory {
             (s.vel, s.omega) = (Vec2::zeros(), 0.0);
         }
         // Validate before deriving: derivation divides by time steps.
-        Trajectory::new(samples.clone())?;
+        Self::validate(&samples)?;
         for k in 0..samples.len() {
             let [vx, vy, omega] = given(k);
             let (v, w) = if vx.is_some() && vy.is_some() && omega.is_some() {
@@ -155,7 +155,14 @@ impl Trajectory {
             samples[k].vel = Vec2::new(vx.unwrap_or(v.x), vy.unwrap_or(v.y));
             samples[k].omega = omega.unwrap_or(w);
         }
-        Trajectory::new(samples)
+        // Times and poses passed above: only the velocities given are left to check.
+        for (k, s) in samples.iter().enumerate() {
+            let fields = [("vx", s.vel.x), ("vy", s.vel.y), ("omega", s.omega)];
+            if let Some((field, _)) = fields.iter().find(|(_, v)| !v.is_finite()) {
+                return Err(TrajectoryError::NotFinite { sample: k, field });
+            }
+        }
+        Ok(Trajectory { samples })
     }
 
     /// Validates the samples, velocities as given.
