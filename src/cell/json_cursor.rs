@@ -1,10 +1,10 @@
 //! A one-pass JSON cursor for the readers' fast path: objects, arrays, plain strings and
 //! numbers, read and converted as the bytes go by.
 //!
-//! serde_json reads a number's digits once to scan it and, with `float_roundtrip`, converts
-//! it by a slow exact algorithm: 40 % of loading a scene went there. The cursor converts
-//! each number as it scans it, exactly (Clinger's fast path, else core's correctly rounded
-//! `str::parse`), to the bits serde_json gives. It gives up, returning `None`, on anything a
+//! serde_json reads a number's digits to scan it and, with `float_roundtrip`, converts it
+//! by a slow exact algorithm: 40 % of loading a scene went there. The cursor converts each
+//! number as it scans it, exactly, to the bits serde_json gives: Clinger's fast path, else a
+//! floating-point guess checked with integers, else core's correctly rounded `str::parse`. It gives up, returning `None`, on anything a
 //! scene does not usually hold (an escape in a string, `null`, `true`, a number beyond f64,
 //! nesting deeper than [`SKIP_DEPTH`]) and on anything that is not JSON; the caller then
 //! reads the document with serde, which either reads it the same way or names what is
@@ -241,9 +241,9 @@ fn accumulate(mut significand: u64, mut digits: &[u8]) -> u64 {
 #[inline(always)]
 fn leading_digits(chunk: u64) -> usize {
     const HIGH_BITS: u64 = 0x8080_8080_8080_8080;
-    let offset = chunk ^ 0x3030_3030_3030_3030; // a digit becomes 0-9
-                                                // Seven bits of each byte plus 0x76 stay within the byte and reach its high bit from
-                                                // 0x0A on; a byte whose own high bit is set is no digit either.
+    // A digit becomes 0-9. Seven bits of each byte plus 0x76 stay within the byte and
+    // reach its high bit from 0x0A on; a byte whose own high bit is set is no digit either.
+    let offset = chunk ^ 0x3030_3030_3030_3030;
     let above_nine = (offset & !HIGH_BITS) + 0x7676_7676_7676_7676;
     let not_digit = (above_nine | offset) & HIGH_BITS;
     not_digit.trailing_zeros() as usize / 8
@@ -283,8 +283,9 @@ fn checked(significand: u64, power: i64, guess: f64) -> Option<f64> {
     let ten = u128::from(POWERS_OF_TEN[power.unsigned_abs() as usize]);
     let bits = guess.to_bits();
     let mut mantissa = u128::from(bits & ((1 << 52) - 1) | 1 << 52);
-    let e = ((bits >> 52) & 0x7FF) as i32 - 1075; // guess = mantissa · 2^e
-                                                  // The number and the guess in one integer unit, and an ulp of the guess in it.
+    // guess = mantissa · 2^e; the number and the guess in one integer unit, and an ulp of
+    // the guess in it.
+    let e = ((bits >> 52) & 0x7FF) as i32 - 1075;
     let (number, guessed, ulp) = match (power >= 0, e) {
         (true, 0..) => (u128::from(significand) * ten, mantissa << e, 1u128 << e),
         (false, ..=0) => (u128::from(significand) << -e, mantissa * ten, ten),
@@ -315,8 +316,8 @@ fn checked(significand: u64, power: i64, guess: f64) -> Option<f64> {
 }
 
 /// The value of eight ASCII digits read as a little-endian u64 (the first digit in the low
-/// byte), in three multiplications instead of eight dependent steps (Lemire, "Number
-/// parsing at a gigabyte per second", 2021, section 5).
+/// byte), in three multiplications instead of eight dependent steps (as in Lemire, "Number
+/// parsing at a gigabyte per second", 2021).
 #[inline(always)]
 fn eight_digits(chunk: u64) -> u64 {
     const LOW_BYTES: u64 = 0x0000_00FF_0000_00FF;

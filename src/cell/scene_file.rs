@@ -257,12 +257,10 @@ mod fast {
     pub(super) fn scene(text: &str) -> Option<RawScene> {
         let mut c = Cursor::new(text);
         let (mut delta, mut robots, mut obstacles) = (None, None, None);
-        // Robots of one scene mostly have as many samples: room for as many as the last.
-        let mut samples = 0;
         c.object(|c, key| match key {
             "delta" => once(&mut delta, c.number()),
-            "robots" => once(&mut robots, list(c, 0, |c| robot(c, &mut samples))),
-            "obstacles" => once(&mut obstacles, list(c, 0, obstacle)),
+            "robots" => once(&mut robots, list(c, robot)),
+            "obstacles" => once(&mut obstacles, list(c, obstacle)),
             _ => c.skip(),
         })?;
         c.end()?;
@@ -273,12 +271,10 @@ mod fast {
         })
     }
 
-    fn list<'a, T>(
-        c: &mut Cursor<'a>,
-        capacity: usize,
-        mut item: impl FnMut(&mut Cursor<'a>) -> Option<T>,
-    ) -> Option<Vec<T>> {
-        let mut items = Vec::with_capacity(capacity);
+    fn list<'a, T>(c: &mut Cursor<'a>, item: fn(&mut Cursor<'a>) -> Option<T>) -> Option<Vec<T>> {
+        // No room reserved from a guess: a robot's count of samples says nothing of the
+        // next one's, and a reserve too large for many robots would multiply memory.
+        let mut items = Vec::new();
         c.array(|c| {
             items.push(item(c)?);
             Some(())
@@ -286,16 +282,12 @@ mod fast {
         Some(items)
     }
 
-    fn robot(c: &mut Cursor, samples: &mut usize) -> Option<RawRobot> {
+    fn robot(c: &mut Cursor) -> Option<RawRobot> {
         let (mut name, mut shape, mut trajectory) = (None, None, None);
         c.object(|c, key| match key {
             "name" => once(&mut name, c.string().map(str::to_owned)),
-            "shape" => once(&mut shape, list(c, 0, vertex)),
-            "trajectory" => {
-                once(&mut trajectory, list(c, *samples, sample))?;
-                *samples = trajectory.as_ref().map_or(0, Vec::len);
-                Some(())
-            }
+            "shape" => once(&mut shape, list(c, vertex)),
+            "trajectory" => once(&mut trajectory, list(c, sample)),
             _ => c.skip(),
         })?;
         Some(RawRobot {
@@ -309,7 +301,7 @@ mod fast {
         let (mut name, mut shape) = (None, None);
         c.object(|c, key| match key {
             "name" => once(&mut name, c.string().map(str::to_owned)),
-            "shape" => once(&mut shape, list(c, 0, vertex)),
+            "shape" => once(&mut shape, list(c, vertex)),
             _ => c.skip(),
         })?;
         Some(RawObstacle {
