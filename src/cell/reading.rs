@@ -173,6 +173,9 @@ pub(super) fn polygon(
         };
         InputError::new(file, Some(body), field, e)
     })?;
+    if repairs.is_empty() {
+        return Ok(shape);
+    }
     // A long list of repairs says no more than its first few and its length.
     const SHOWN: usize = 8;
     let at = format!("{}: body \"{body}\", field `{field}`", file.display());

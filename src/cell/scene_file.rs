@@ -4,7 +4,8 @@ use super::object_only::object_only;
 use super::reading::{delta, document, polygon, read_file, Point};
 use super::InputError;
 use crate::collision::{Body, Scene};
-use crate::motion::{Motion, Pose, Sample, Trajectory, TrajectoryError};
+use crate::geometry::Vec2;
+use crate::motion::{Motion, Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -24,7 +25,7 @@ struct RawScene {
 struct RawRobot {
     name: String,
     shape: Vec<Point>,
-    trajectory: Vec<RawSample>,
+    trajectory: Samples,
 }
 
 #[derive(Deserialize)]
@@ -34,41 +35,38 @@ struct RawSample {
     x: f64,
     y: f64,
     #[serde(default)]
-    vx: Optional,
+    vx: Option<f64>,
     #[serde(default)]
-    vy: Optional,
+    vy: Option<f64>,
     #[serde(default)]
-    theta: Optional,
+    theta: Option<f64>,
     #[serde(default)]
-    omega: Optional,
+    omega: Option<f64>,
 }
 
-/// A sample's optional number in 8 bytes where `Option<f64>` takes 16 (samples are most of
-/// a scene's memory while it is read): NaN when absent, which JSON cannot hold.
-#[derive(Clone, Copy)]
-struct Optional(f64);
-
-impl Optional {
-    fn get(self) -> Option<f64> {
-        (!self.0.is_nan()).then_some(self.0)
+impl RawSample {
+    /// The sample as [`Samples`] holds it.
+    fn sample(&self) -> Sample {
+        let missing = f64::NAN;
+        Sample {
+            t: self.t,
+            pos: Vec2::new(self.x, self.y),
+            theta: self.theta.unwrap_or(0.0),
+            vel: Vec2::new(self.vx.unwrap_or(missing), self.vy.unwrap_or(missing)),
+            omega: self.omega.unwrap_or(missing),
+        }
     }
 }
 
-impl From<Option<f64>> for Optional {
-    fn from(v: Option<f64>) -> Self {
-        Optional(v.unwrap_or(f64::NAN))
-    }
-}
+/// A robot's samples as written, in the trajectory's own form and vector: θ 0 where the
+/// file gives none, velocities NaN where it gives none (JSON cannot hold NaN), for
+/// [`Trajectory::with_missing_velocities`] to derive.
+struct Samples(Vec<Sample>);
 
-impl Default for Optional {
-    fn default() -> Self {
-        None.into()
-    }
-}
-
-impl<'de> Deserialize<'de> for Optional {
+impl<'de> Deserialize<'de> for Samples {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        Option::<f64>::deserialize(d).map(Into::into)
+        let raw = Vec::<RawSample>::deserialize(d)?;
+        Ok(Samples(raw.iter().map(RawSample::sample).collect()))
     }
 }
 
@@ -148,7 +146,7 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
     let mut warnings = Vec::new();
     let mut names = HashSet::new();
     let mut bodies = Vec::with_capacity(raw.robots.len() + raw.obstacles.len());
-    for (k, r) in raw.robots.iter().enumerate() {
+    for (k, r) in raw.robots.into_iter().enumerate() {
         let at = format!("robots[{k}]");
         check_name(file, &r.name, &at, &mut names)?;
         let shape = polygon(
@@ -158,7 +156,7 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
             &r.shape,
             &mut warnings,
         )?;
-        let trajectory = trajectory(&r.trajectory).map_err(|e| {
+        let trajectory = Trajectory::with_missing_velocities(r.trajectory.0).map_err(|e| {
             let field = match &e {
                 TrajectoryError::Empty => format!("{at}.trajectory"),
                 TrajectoryError::NotFinite { sample, field } => {
@@ -174,7 +172,7 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
             InputError::new(file, Some(&r.name), field, e)
         })?;
         bodies.push(Body {
-            name: r.name.clone(),
+            name: r.name,
             shape,
             motion: Motion::Sampled(trajectory),
         });
@@ -234,25 +232,14 @@ fn check_name(
     Ok(())
 }
 
-/// Samples with defaults filled in: theta 0, velocities derived from the positions.
-fn trajectory(raw: &[RawSample]) -> Result<Trajectory, TrajectoryError> {
-    let samples = raw
-        .iter()
-        .map(|s| Sample::at(s.t, Pose::new(s.x, s.y, s.theta.get().unwrap_or(0.0))))
-        .collect();
-    Trajectory::with_given_velocities(samples, |k| {
-        let s = &raw[k];
-        [s.vx.get(), s.vy.get(), s.omega.get()]
-    })
-}
-
 /// The scene document read in one pass by [`Cursor`], into the records serde would make of
 /// it: unknown keys skipped, a key given twice or anything the cursor leaves to serde
 /// (`None`) read again by serde.
 mod fast {
     use super::super::json_cursor::{once, Cursor};
     use super::super::reading::Point;
-    use super::{RawObstacle, RawRobot, RawSample, RawScene};
+    use super::{RawObstacle, RawRobot, RawSample, RawScene, Samples};
+    use crate::motion::Sample;
 
     pub(super) fn scene(text: &str) -> Option<RawScene> {
         let mut c = Cursor::new(text);
@@ -287,7 +274,7 @@ mod fast {
         c.object(|c, key| match key {
             "name" => once(&mut name, c.string().map(str::to_owned)),
             "shape" => once(&mut shape, list(c, vertex)),
-            "trajectory" => once(&mut trajectory, list(c, sample)),
+            "trajectory" => once(&mut trajectory, list(c, sample).map(Samples)),
             _ => c.skip(),
         })?;
         Some(RawRobot {
@@ -319,7 +306,7 @@ mod fast {
         Some(p)
     }
 
-    fn sample(c: &mut Cursor) -> Option<RawSample> {
+    fn sample(c: &mut Cursor) -> Option<Sample> {
         let [mut t, mut x, mut y, mut vx, mut vy, mut theta, mut omega] = [None; 7];
         c.object(|c, key| {
             let slot = match key {
@@ -334,15 +321,16 @@ mod fast {
             };
             once(slot, c.number())
         })?;
-        Some(RawSample {
+        let raw = RawSample {
             t: t?,
             x: x?,
             y: y?,
-            vx: vx.into(),
-            vy: vy.into(),
-            theta: theta.into(),
-            omega: omega.into(),
-        })
+            vx,
+            vy,
+            theta,
+            omega,
+        };
+        Some(raw.sample())
     }
 }
 

@@ -125,35 +125,37 @@ impl Trajectory {
     pub fn from_poses(
         poses: impl IntoIterator<Item = (f64, Pose)>,
     ) -> Result<Self, TrajectoryError> {
-        let samples = poses.into_iter().map(|(t, p)| Sample::at(t, p)).collect();
-        Self::with_given_velocities(samples, |_| [None; 3])
+        let unknown = |(t, p)| Sample {
+            vel: Vec2::new(f64::NAN, f64::NAN),
+            omega: f64::NAN,
+            ..Sample::at(t, p)
+        };
+        Self::with_missing_velocities(poses.into_iter().map(unknown).collect())
     }
 
-    /// The scene file's rule for velocities: a sample whose `given(k)` (vx, vy, omega) are
-    /// all known keeps them; any other gets the unknown ones from
-    /// [`Trajectory::derived_velocity`], which must then be finite. The velocities already
-    /// in `samples` are ignored.
-    pub(crate) fn with_given_velocities(
+    /// The scene file's rule for velocities: a sample whose velocities (vx, vy, omega) are
+    /// all given keeps them; any other gets those it lacks, NaN in `samples`, from
+    /// [`Trajectory::derived_velocity`], which must then be finite.
+    pub(crate) fn with_missing_velocities(
         mut samples: Vec<Sample>,
-        given: impl Fn(usize) -> [Option<f64>; 3],
     ) -> Result<Self, TrajectoryError> {
-        for s in &mut samples {
-            (s.vel, s.omega) = (Vec2::zeros(), 0.0);
-        }
         // Validate before deriving: derivation divides by time steps.
-        Self::validate(&samples)?;
+        Self::check(&samples, false)?;
         for k in 0..samples.len() {
-            let [vx, vy, omega] = given(k);
-            let (v, w) = if vx.is_some() && vy.is_some() && omega.is_some() {
-                (Vec2::zeros(), 0.0)
-            } else {
-                Trajectory::derived_velocity(&samples, k)
-            };
-            if !(v.x.is_finite() && v.y.is_finite() && w.is_finite()) {
-                return Err(TrajectoryError::DerivedVelocityOverflow { sample: k });
+            let given = samples[k];
+            if [given.vel.x, given.vel.y, given.omega]
+                .iter()
+                .any(|v| v.is_nan())
+            {
+                // From times and poses only: the velocities filled in so far do not count.
+                let (v, w) = Trajectory::derived_velocity(&samples, k);
+                if !(v.x.is_finite() && v.y.is_finite() && w.is_finite()) {
+                    return Err(TrajectoryError::DerivedVelocityOverflow { sample: k });
+                }
+                let or = |g: f64, derived: f64| if g.is_nan() { derived } else { g };
+                samples[k].vel = Vec2::new(or(given.vel.x, v.x), or(given.vel.y, v.y));
+                samples[k].omega = or(given.omega, w);
             }
-            samples[k].vel = Vec2::new(vx.unwrap_or(v.x), vy.unwrap_or(v.y));
-            samples[k].omega = omega.unwrap_or(w);
         }
         // Times and poses passed above: only the velocities given are left to check.
         for (k, s) in samples.iter().enumerate() {
@@ -186,6 +188,11 @@ impl Trajectory {
 
     /// What [`Trajectory::new`] refuses, without taking the samples.
     pub(crate) fn validate(samples: &[Sample]) -> Result<(), TrajectoryError> {
+        Self::check(samples, true)
+    }
+
+    /// What [`Trajectory::validate`] refuses, the velocities left out unless `velocities`.
+    fn check(samples: &[Sample], velocities: bool) -> Result<(), TrajectoryError> {
         if samples.is_empty() {
             return Err(TrajectoryError::Empty);
         }
@@ -199,6 +206,11 @@ impl Trajectory {
                 ("vy", s.vel.y),
                 ("omega", s.omega),
             ];
+            let fields = if velocities {
+                &fields[..]
+            } else {
+                &fields[..4]
+            };
             if let Some((field, _)) = fields.iter().find(|(_, v)| !v.is_finite()) {
                 return Err(TrajectoryError::NotFinite { sample: k, field });
             }
