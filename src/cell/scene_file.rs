@@ -406,6 +406,27 @@ mod tests {
         assert_eq!(read_fast, 4 * texts.len());
     }
 
+    /// A sample keeps the velocities it gives only when it gives all three; the others, and
+    /// any left out, come from the positions (the average of the slopes either side).
+    #[test]
+    fn velocities_given_or_derived() {
+        let text = r#"{"robots": [{"name": "A", "shape": [[0,0],[1,0],[1,1]], "trajectory": [
+            {"t": 0, "x": 0, "y": 0},
+            {"t": 1, "x": 2, "y": 4, "vx": 7, "theta": 1},
+            {"t": 2, "x": 6, "y": 4, "vx": 5, "vy": 6, "omega": 7}]}]}"#;
+        let loaded = parse_scene(text, Path::new("s.json")).unwrap();
+        let Motion::Sampled(tr) = &loaded.scene.bodies[0].motion else {
+            panic!("a robot");
+        };
+        let at = |k: usize| {
+            let s = tr.samples()[k];
+            (s.vel.x, s.vel.y, s.omega)
+        };
+        assert_eq!(at(0), (2.0, 4.0, 1.0), "slope of the first segment");
+        assert_eq!(at(1), (7.0, 2.0, 0.0), "vx given, vy and omega derived");
+        assert_eq!(at(2), (5.0, 6.0, 7.0), "all three given");
+    }
+
     /// What the one-pass reader leaves to serde, or refuses, reads as before.
     #[test]
     fn anything_else_is_left_to_serde() {
