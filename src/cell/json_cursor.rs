@@ -4,12 +4,12 @@
 //! serde_json reads a number's digits to scan it and, with `float_roundtrip`, converts it
 //! by a slow exact algorithm: 40 % of loading a scene went there. The cursor converts each
 //! number as it scans it, exactly, to the bits serde_json gives: Clinger's fast path, else a
-//! floating-point guess checked with integers, else core's correctly rounded `str::parse`. It gives up, returning `None`, on anything a
-//! scene does not usually hold (an escape in a string, `null`, `true`, a number beyond f64,
-//! nesting deeper than [`SKIP_DEPTH`]) and on anything that is not JSON; the caller then
-//! reads the document with serde, which either reads it the same way or names what is
-//! wrong. So the cursor only has to be right about what it accepts (tested value for value
-//! against serde_json).
+//! floating-point guess checked with integers, else core's correctly rounded `str::parse`.
+//! It gives up, returning `None`, on anything a scene does not usually hold (an escape in a
+//! string, `null`, `true`, a number beyond f64, nesting deeper than [`SKIP_DEPTH`]) and on
+//! anything that is not JSON; the caller then reads the document with serde, which either
+//! reads it the same way or names what is wrong. So the cursor only has to be right about
+//! what it accepts (tested value for value against serde_json).
 
 /// Where the reader is in the text.
 pub(super) struct Cursor<'a> {
@@ -286,12 +286,11 @@ fn checked(significand: u64, power: i64, guess: f64) -> Option<f64> {
     // guess = mantissa · 2^e; the number and the guess in one integer unit, and an ulp of
     // the guess in it.
     let e = ((bits >> 52) & 0x7FF) as i32 - 1075;
-    let (number, guessed, ulp) = match (power >= 0, e) {
+    let (number, mut guessed, ulp) = match (power >= 0, e) {
         (true, 0..) => (u128::from(significand) * ten, mantissa << e, 1u128 << e),
         (false, ..=0) => (u128::from(significand) << -e, mantissa * ten, ten),
         _ => return None,
     };
-    let mut guessed = guessed;
     for _ in 0..2 {
         let twice_off = 2 * number.abs_diff(guessed);
         if twice_off < ulp {
@@ -396,6 +395,14 @@ mod tests {
             "0.1000000000000000055511151231257827",
             "2.4703282292062327e-324",
             "2.4703282292062328e-324",
+            // Exact ties between two f64 (2^52 + k + 1/2, ulp 1) with significands above
+            // 2^53: even wins, whichever side the floating-point guess falls on.
+            "4503599627370496.5",
+            "4503599627370497.5",
+            "4503599627370498.5",
+            "-4503599627370499.5",
+            "45035996273704965e-1",
+            "0.45035996273704975e16",
             "00",
             "01",
             "1.",
