@@ -11,6 +11,7 @@
 mod brute_force;
 mod feature;
 mod lin_canny;
+mod outline;
 mod polygon;
 mod posed;
 mod segment;
@@ -18,6 +19,7 @@ mod segment;
 pub use brute_force::brute_force_distance;
 pub use feature::{Feature, FeaturePair};
 pub use lin_canny::{closest_features, Distance, WalkTolerances};
+pub use outline::{Outline, OutlineError};
 pub use polygon::{ConvexPolygon, PolygonError, PolygonWarning, RepairShift};
 pub use posed::Posed;
 

@@ -367,6 +367,21 @@ impl ConvexPolygon {
         o + c / (3.0 * a)
     }
 
+    /// Area (positive: the vertices are counter-clockwise).
+    ///
+    /// ```
+    /// use workcell::geometry::ConvexPolygon;
+    /// assert_eq!(ConvexPolygon::rectangle(2.0, 3.0)?.area(), 6.0);
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn area(&self) -> f64 {
+        let o = self.vertices[0];
+        let twice: f64 = (1..self.len() - 1)
+            .map(|i| cross(&(self.vertices[i] - o), &(self.vertices[i + 1] - o)))
+            .sum();
+        0.5 * twice
+    }
+
     /// Counter-clockwise vertices, in the polygon's frame.
     #[inline]
     pub fn vertices(&self) -> &[Vec2] {
