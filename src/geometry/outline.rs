@@ -317,6 +317,9 @@ fn check_simple(pts: &[(usize, Vec2)]) -> Result<(), OutlineError> {
     Ok(())
 }
 
+/// A diagonal `(a, b)` of a triangulation and the triangle on each side of it.
+type Diagonal = (usize, usize, usize, usize);
+
 /// An ear-clipping triangulation of the simple counter-clockwise polygon `v`: triangles as
 /// vertex indices (counter-clockwise) and the diagonals `(a, b, one triangle, the other)`.
 ///
@@ -324,7 +327,7 @@ fn check_simple(pts: &[(usize, Vec2)]) -> Result<(), OutlineError> {
 /// on its boundary included; a vertex exactly straight between its neighbours in the
 /// remaining polygon is cut away with no triangle (it lies on the new edge, which loses no
 /// area). By the two-ears theorem and exact predicates an ear always exists.
-fn ear_clip(v: &[Vec2]) -> (Vec<Vec<usize>>, Vec<(usize, usize, usize, usize)>) {
+fn ear_clip(v: &[Vec2]) -> (Vec<Vec<usize>>, Vec<Diagonal>) {
     let mut ring: Vec<usize> = (0..v.len()).collect();
     let mut triangles: Vec<Vec<usize>> = Vec::new();
     let mut diagonals = Vec::new();
