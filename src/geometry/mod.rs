@@ -12,6 +12,7 @@ mod brute_force;
 mod feature;
 mod lin_canny;
 mod outline;
+mod parts;
 mod polygon;
 mod posed;
 mod segment;
@@ -20,6 +21,7 @@ pub use brute_force::brute_force_distance;
 pub use feature::{Feature, FeaturePair};
 pub use lin_canny::{closest_features, Distance, WalkTolerances};
 pub use outline::{Outline, OutlineError};
+pub use parts::{parts_distance, Parts, PartsCache, PartsDistance, PartsSide};
 pub use polygon::{ConvexPolygon, PolygonError, PolygonWarning, RepairShift};
 pub use posed::Posed;
 

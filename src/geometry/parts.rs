@@ -1,0 +1,366 @@
+//! Bodies made of convex parts (contract section 5): the union of the parts, under their
+//! convex hull, with a disc around each part.
+//!
+//! The levels form the small hierarchy of bounding volumes that Feyeux & Landry's
+//! conclusion calls for: the body's disc, its hull, each part's disc, the parts. A query
+//! goes down a level only where the coarser one cannot answer, so a non-convex body far
+//! from everything costs what its hull costs.
+
+use super::{closest_features, ConvexPolygon, FeaturePair, Outline, Posed, Vec2};
+use super::{PolygonError, WalkTolerances};
+
+/// A non-convex body: convex parts (two or more) whose union it is, in the body frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parts {
+    parts: Vec<ConvexPolygon>,
+    /// Each part's bounding disc: its centroid and the farthest vertex from it.
+    discs: Vec<(Vec2, f64)>,
+    /// The outline the parts were cut from (pictures draw it, not the seams).
+    outline: Option<Vec<Vec2>>,
+}
+
+impl Parts {
+    /// The union of `parts` (as given, each validated), and the convex hull of them all:
+    /// the body's outer level. A single part is a convex body: `None` beside its hull.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// let body = ConvexPolygon::rectangle(1.0, 0.6)?;
+    /// let finger = ConvexPolygon::from_vertices(&[[0.5, -0.1], [1.2, -0.1], [1.2, 0.1], [0.5, 0.1]])?;
+    /// let (hull, parts) = Parts::new(vec![body, finger])?;
+    /// assert_eq!(parts.unwrap().len(), 2);
+    /// assert_eq!(hull.len(), 6);
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn new(parts: Vec<ConvexPolygon>) -> Result<(ConvexPolygon, Option<Parts>), PolygonError> {
+        if parts.len() == 1 {
+            return Ok((parts.into_iter().next().expect("one part"), None));
+        }
+        let hull = convex_hull(parts.iter().flat_map(|p| p.vertices().iter().copied()))?;
+        let discs = parts
+            .iter()
+            .map(|p| {
+                let c = p.centroid();
+                (
+                    c,
+                    p.vertices()
+                        .iter()
+                        .fold(0.0f64, |r, v| r.max((v - c).norm())),
+                )
+            })
+            .collect();
+        Ok((
+            hull,
+            Some(Parts {
+                parts,
+                discs,
+                outline: None,
+            }),
+        ))
+    }
+
+    /// The region an outline bounds, cut into convex parts; `None` beside the hull when the
+    /// outline is convex.
+    pub fn from_outline(
+        outline: &Outline,
+        convex: Vec<ConvexPolygon>,
+    ) -> Result<(ConvexPolygon, Option<Parts>), PolygonError> {
+        let (hull, parts) = Parts::new(convex)?;
+        Ok((
+            hull,
+            parts.map(|p| Parts {
+                outline: Some(outline.vertices().to_vec()),
+                ..p
+            }),
+        ))
+    }
+
+    /// The same body moved by `offset` in its frame (an obstacle's frame is put at its
+    /// hull's centroid).
+    pub fn translated(&self, offset: &Vec2) -> Parts {
+        Parts {
+            parts: self.parts.iter().map(|p| p.translated(offset)).collect(),
+            discs: self.discs.iter().map(|(c, r)| (c - offset, *r)).collect(),
+            outline: self
+                .outline
+                .as_ref()
+                .map(|o| o.iter().map(|v| v - offset).collect()),
+        }
+    }
+
+    /// The convex parts, in the order given.
+    pub fn parts(&self) -> &[ConvexPolygon] {
+        &self.parts
+    }
+
+    /// The outline the parts were cut from, if they were.
+    pub fn outline(&self) -> Option<&[Vec2]> {
+        self.outline.as_deref()
+    }
+
+    /// Number of parts (at least two).
+    pub fn len(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// Always false: a body of parts has at least two.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+}
+
+/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain, exact turns).
+fn convex_hull(points: impl Iterator<Item = Vec2>) -> Result<ConvexPolygon, PolygonError> {
+    let mut pts: Vec<Vec2> = points.collect();
+    pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
+    pts.dedup();
+    let left = |a: &Vec2, b: &Vec2, c: &Vec2| {
+        let at = |p: &Vec2| robust::Coord { x: p.x, y: p.y };
+        robust::orient2d(at(a), at(b), at(c)) > 0.0
+    };
+    let mut hull: Vec<Vec2> = Vec::with_capacity(pts.len() + 1);
+    for pass in [&pts[..], &pts.iter().rev().copied().collect::<Vec<_>>()[..]] {
+        let floor = hull.len();
+        for p in pass {
+            while hull.len() >= floor + 2 && !left(&hull[hull.len() - 2], &hull[hull.len() - 1], p)
+            {
+                hull.pop();
+            }
+            hull.push(*p);
+        }
+        hull.pop(); // the last point starts the other chain
+    }
+    let corners: Vec<[f64; 2]> = hull.iter().map(|v| [v.x, v.y]).collect();
+    ConvexPolygon::from_vertices(&corners)
+}
+
+/// One side of a part query: a body's convex pieces, their discs and its pose (relative
+/// to the other body's frame, as η works).
+#[derive(Clone, Copy)]
+pub struct PartsSide<'a> {
+    parts: &'a [ConvexPolygon],
+    discs: &'a [(Vec2, f64)],
+    pos: Vec2,
+    theta: f64,
+}
+
+impl<'a> PartsSide<'a> {
+    /// A body of parts at this pose.
+    pub fn of(parts: &'a Parts, pos: Vec2, theta: f64) -> Self {
+        PartsSide {
+            parts: &parts.parts,
+            discs: &parts.discs,
+            pos,
+            theta,
+        }
+    }
+
+    /// A convex body as one part, its disc centred on its frame's origin.
+    pub fn convex(shape: &'a ConvexPolygon, disc: &'a (Vec2, f64), pos: Vec2, theta: f64) -> Self {
+        PartsSide {
+            parts: std::slice::from_ref(shape),
+            discs: std::slice::from_ref(disc),
+            pos,
+            theta,
+        }
+    }
+
+    fn disc_centre(&self, i: usize) -> Vec2 {
+        let (c, s) = (self.discs[i].0, self.theta.sin_cos());
+        self.pos + Vec2::new(s.1 * c.x - s.0 * c.y, s.0 * c.x + s.1 * c.y)
+    }
+}
+
+/// The least distance between two bodies' parts, and which parts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PartsDistance {
+    /// Euclidean distance of the closest pair of parts; 0 when some pair touches.
+    pub distance: f64,
+    /// That pair: the part of A, the part of B.
+    pub parts: (usize, usize),
+    /// Closest-feature walks run.
+    pub walks: u32,
+    /// Feature steps those walks took.
+    pub steps: u32,
+}
+
+/// What a part query keeps between calls on the same pair: the last closest features of
+/// every pair of parts (for warm starts) and a candidate list.
+#[derive(Clone, Debug, Default)]
+pub struct PartsCache {
+    warm: Vec<Option<FeaturePair>>,
+    candidates: Vec<(f64, u32, u32)>,
+    centres: Vec<Vec2>,
+}
+
+/// The exact least distance between two bodies made of parts, best-first: every pair of
+/// parts gets the gap between its discs as a lower bound; the pairs are walked nearest bound
+/// first, and the search stops once the next bound is no less than the least distance found.
+///
+/// ```
+/// use workcell::geometry::{parts_distance, ConvexPolygon, Parts, PartsCache, PartsSide, Vec2, WalkTolerances};
+/// let bar = |x0: f64, y0: f64, x1: f64, y1: f64| ConvexPolygon::from_vertices(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]);
+/// // A U open upwards, and a peg hanging in its bay: the hulls overlap, the parts do not.
+/// let (_, u) = Parts::new(vec![bar(-2.0, 0.0, 2.0, 1.0)?, bar(-2.0, 1.0, -1.0, 4.0)?, bar(1.0, 1.0, 2.0, 4.0)?])?;
+/// let peg = bar(-0.5, -1.0, 0.5, 1.0)?;
+/// let disc = (Vec2::zeros(), peg.radius());
+/// let mut cache = PartsCache::default();
+/// let d = parts_distance(
+///     PartsSide::of(u.as_ref().unwrap(), Vec2::zeros(), 0.0),
+///     PartsSide::convex(&peg, &disc, Vec2::new(0.0, 3.0), 0.0),
+///     &WalkTolerances::default(),
+///     &mut cache,
+/// );
+/// assert!((d.distance - 0.5).abs() < 1e-12); // 0.5 to each arm of the U, 1 to its floor
+/// assert!(d.parts.0 == 1 || d.parts.0 == 2);
+/// # Ok::<(), workcell::geometry::PolygonError>(())
+/// ```
+pub fn parts_distance(
+    a: PartsSide,
+    b: PartsSide,
+    tol: &WalkTolerances,
+    cache: &mut PartsCache,
+) -> PartsDistance {
+    let (na, nb) = (a.parts.len(), b.parts.len());
+    if cache.warm.len() != na * nb {
+        cache.warm = vec![None; na * nb];
+    }
+    let PartsCache {
+        warm,
+        candidates,
+        centres,
+    } = cache;
+    centres.clear();
+    centres.extend((0..nb).map(|j| b.disc_centre(j)));
+    candidates.clear();
+    for i in 0..na {
+        let (ca, ra) = (a.disc_centre(i), a.discs[i].1);
+        for (j, cb) in centres.iter().enumerate() {
+            let gap = (cb - ca).norm() - ra - b.discs[j].1;
+            candidates.push((gap, i as u32, j as u32));
+        }
+    }
+    candidates.sort_unstable_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
+    let mut best = PartsDistance {
+        distance: f64::INFINITY,
+        parts: (0, 0),
+        walks: 0,
+        steps: 0,
+    };
+    for &(gap, i, j) in candidates.iter() {
+        if gap >= best.distance {
+            break;
+        }
+        let (i, j) = (i as usize, j as usize);
+        let pa = Posed::new(&a.parts[i], a.pos.x, a.pos.y, a.theta);
+        let pb = Posed::new(&b.parts[j], b.pos.x, b.pos.y, b.theta);
+        let warm = &mut warm[i * nb + j];
+        let d = closest_features(&pa, &pb, *warm, tol);
+        *warm = Some(d.features);
+        best.walks += 1;
+        best.steps += d.steps;
+        // A tie keeps the pair met first in the (deterministic) order of the bounds.
+        if d.distance < best.distance {
+            best.distance = d.distance;
+            best.parts = (i, j);
+        }
+        if best.distance == 0.0 {
+            break;
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::brute_force_distance;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn random_part(rng: &mut ChaCha8Rng) -> ConvexPolygon {
+        let (cx, cy) = (rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0));
+        let n = rng.random_range(3..8);
+        let mut angles: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..6.28)).collect();
+        angles.sort_by(f64::total_cmp);
+        let r = rng.random_range(0.1..1.0);
+        let pts: Vec<[f64; 2]> = angles
+            .iter()
+            .map(|a| [cx + r * a.cos(), cy + r * a.sin()])
+            .collect();
+        ConvexPolygon::from_vertices(&pts)
+            .unwrap_or_else(|_| ConvexPolygon::rectangle(r, r).unwrap())
+    }
+
+    /// Best-first with its early exit finds the least distance over every pair of parts,
+    /// and a pair that attains it; warm starts carried from pose to pose change nothing.
+    #[test]
+    fn best_first_agrees_with_every_pair() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let tol = WalkTolerances::default();
+        for _ in 0..200 {
+            let pa: Vec<ConvexPolygon> = (0..rng.random_range(2..12))
+                .map(|_| random_part(&mut rng))
+                .collect();
+            let pb: Vec<ConvexPolygon> = (0..rng.random_range(2..12))
+                .map(|_| random_part(&mut rng))
+                .collect();
+            let (_, a) = Parts::new(pa.clone()).unwrap();
+            let (_, b) = Parts::new(pb.clone()).unwrap();
+            let (a, b) = (a.unwrap(), b.unwrap());
+            let mut cache = PartsCache::default();
+            let (mut pos, mut theta) = (
+                Vec2::new(rng.random_range(-8.0..8.0), rng.random_range(-8.0..8.0)),
+                0.0,
+            );
+            for _ in 0..10 {
+                pos += Vec2::new(rng.random_range(-0.3..0.3), rng.random_range(-0.3..0.3));
+                theta += rng.random_range(-0.5..0.5);
+                let ta = rng.random_range(-3.0..3.0);
+                let d = parts_distance(
+                    PartsSide::of(&a, Vec2::zeros(), ta),
+                    PartsSide::of(&b, pos, theta),
+                    &tol,
+                    &mut cache,
+                );
+                let pair = |i: usize, j: usize| {
+                    brute_force_distance(
+                        &Posed::new(&pa[i], 0.0, 0.0, ta),
+                        &Posed::new(&pb[j], pos.x, pos.y, theta),
+                    )
+                    .distance
+                };
+                let least = (0..pa.len())
+                    .flat_map(|i| (0..pb.len()).map(move |j| (i, j)))
+                    .map(|(i, j)| pair(i, j))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    (d.distance - least).abs() <= 1e-9,
+                    "{} against {least}",
+                    d.distance
+                );
+                assert!((pair(d.parts.0, d.parts.1) - d.distance).abs() <= 1e-9);
+                assert!(d.walks as usize <= pa.len() * pb.len());
+            }
+        }
+    }
+
+    #[test]
+    fn hull_holds_every_part_and_one_part_is_convex() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let parts: Vec<ConvexPolygon> = (0..6).map(|_| random_part(&mut rng)).collect();
+        let (hull, _) = Parts::new(parts.clone()).unwrap();
+        let n = hull.len();
+        for p in &parts {
+            for v in p.vertices() {
+                for k in 0..n {
+                    let (a, b) = (hull.vertices()[k], hull.vertices()[(k + 1) % n]);
+                    assert!(crate::geometry::cross(&(b - a), &(v - a)) >= -1e-12);
+                }
+            }
+        }
+        let (one, none) = Parts::new(vec![parts[0].clone()]).unwrap();
+        assert!(none.is_none());
+        assert_eq!(one, parts[0]);
+    }
+}
