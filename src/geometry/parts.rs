@@ -281,7 +281,9 @@ mod tests {
     fn random_part(rng: &mut ChaCha8Rng) -> ConvexPolygon {
         let (cx, cy) = (rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0));
         let n = rng.random_range(3..8);
-        let mut angles: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..6.28)).collect();
+        let mut angles: Vec<f64> = (0..n)
+            .map(|_| rng.random_range(0.0..std::f64::consts::TAU))
+            .collect();
         angles.sort_by(f64::total_cmp);
         let r = rng.random_range(0.1..1.0);
         let pts: Vec<[f64; 2]> = angles
