@@ -7,11 +7,13 @@
 //! from everything costs what its hull costs.
 
 use super::{closest_features, ConvexPolygon, FeaturePair, Outline, Posed, Vec2};
-use super::{PolygonError, WalkTolerances};
+use super::{OutlineError, PolygonError, WalkTolerances};
 
-/// A non-convex body: convex parts (two or more) whose union it is, in the body frame.
+/// A body made of convex parts, in the body frame: their union, with the convex hull of
+/// them all as its outer level. One part is a convex body ([`Parts::is_convex`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parts {
+    hull: ConvexPolygon,
     parts: Vec<ConvexPolygon>,
     /// Each part's bounding disc: its centroid and the farthest vertex from it.
     discs: Vec<(Vec2, f64)>,
@@ -20,23 +22,22 @@ pub struct Parts {
 }
 
 impl Parts {
-    /// The union of `parts` (as given, each validated), and the convex hull of them all:
-    /// the body's outer level. A single part is a convex body: `None` beside its hull.
+    /// The union of `parts` (each validated; at least one), under their convex hull.
     ///
     /// ```
     /// use workcell::geometry::{ConvexPolygon, Parts};
     /// let body = ConvexPolygon::rectangle(1.0, 0.6)?;
     /// let finger = ConvexPolygon::from_vertices(&[[0.5, -0.1], [1.2, -0.1], [1.2, 0.1], [0.5, 0.1]])?;
-    /// let (hull, parts) = Parts::new(vec![body, finger])?;
-    /// assert_eq!(parts.unwrap().len(), 2);
-    /// assert_eq!(hull.len(), 6);
+    /// let gripper = Parts::new(vec![body, finger])?;
+    /// assert_eq!((gripper.len(), gripper.hull().len()), (2, 6));
+    /// assert!(!gripper.is_convex());
     /// # Ok::<(), workcell::geometry::PolygonError>(())
     /// ```
-    pub fn new(parts: Vec<ConvexPolygon>) -> Result<(ConvexPolygon, Option<Parts>), PolygonError> {
-        if parts.len() == 1 {
-            return Ok((parts.into_iter().next().expect("one part"), None));
-        }
-        let hull = convex_hull(parts.iter().flat_map(|p| p.vertices().iter().copied()))?;
+    pub fn new(parts: Vec<ConvexPolygon>) -> Result<Parts, PolygonError> {
+        let hull = match parts.as_slice() {
+            [one] => one.clone(),
+            _ => convex_hull(parts.iter().flat_map(|p| p.vertices().iter().copied()))?,
+        };
         let discs = parts
             .iter()
             .map(|p| {
@@ -49,36 +50,49 @@ impl Parts {
                 )
             })
             .collect();
-        Ok((
+        Ok(Parts {
             hull,
-            Some(Parts {
-                parts,
-                discs,
-                outline: None,
-            }),
-        ))
+            parts,
+            discs,
+            outline: None,
+        })
     }
 
-    /// The region an outline bounds, cut into convex parts; `None` beside the hull when the
-    /// outline is convex.
-    pub fn from_outline(
-        outline: &Outline,
-        convex: Vec<ConvexPolygon>,
-    ) -> Result<(ConvexPolygon, Option<Parts>), PolygonError> {
-        let (hull, parts) = Parts::new(convex)?;
-        Ok((
-            hull,
-            parts.map(|p| Parts {
-                outline: Some(outline.vertices().to_vec()),
-                ..p
-            }),
-        ))
+    /// The region an outline bounds, cut into convex parts.
+    ///
+    /// ```
+    /// use workcell::geometry::{Outline, Parts};
+    /// let l = Outline::new(&[[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [1.0, 1.0], [1.0, 3.0], [0.0, 3.0]])?;
+    /// let parts = Parts::from_outline(&l)?;
+    /// assert_eq!((parts.len(), parts.outline().map(<[_]>::len)), (2, Some(6)));
+    /// # Ok::<(), workcell::geometry::OutlineError>(())
+    /// ```
+    pub fn from_outline(outline: &Outline) -> Result<Parts, OutlineError> {
+        let convex = outline.convex_parts()?;
+        let sliver = OutlineError::Sliver { vertex: 0 };
+        let parts = Parts::new(convex).map_err(|_| sliver)?;
+        Ok(Parts {
+            outline: Some(outline.vertices().to_vec()),
+            ..parts
+        })
+    }
+
+    /// The convex hull of the parts: the body's outer level, and the body itself when it is
+    /// convex.
+    pub fn hull(&self) -> &ConvexPolygon {
+        &self.hull
+    }
+
+    /// Whether the body is its hull: one part.
+    pub fn is_convex(&self) -> bool {
+        self.parts.len() == 1
     }
 
     /// The same body moved by `offset` in its frame (an obstacle's frame is put at its
     /// hull's centroid).
     pub fn translated(&self, offset: &Vec2) -> Parts {
         Parts {
+            hull: self.hull.translated(offset),
             parts: self.parts.iter().map(|p| p.translated(offset)).collect(),
             discs: self.discs.iter().map(|(c, r)| (c - offset, *r)).collect(),
             outline: self
@@ -98,12 +112,12 @@ impl Parts {
         self.outline.as_deref()
     }
 
-    /// Number of parts (at least two).
+    /// Number of parts.
     pub fn len(&self) -> usize {
         self.parts.len()
     }
 
-    /// Always false: a body of parts has at least two.
+    /// Always false: a body has at least one part.
     pub fn is_empty(&self) -> bool {
         false
     }
@@ -201,12 +215,12 @@ pub struct PartsCache {
 /// use workcell::geometry::{parts_distance, ConvexPolygon, Parts, PartsCache, PartsSide, Vec2, WalkTolerances};
 /// let bar = |x0: f64, y0: f64, x1: f64, y1: f64| ConvexPolygon::from_vertices(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]);
 /// // A U open upwards, and a peg hanging in its bay: the hulls overlap, the parts do not.
-/// let (_, u) = Parts::new(vec![bar(-2.0, 0.0, 2.0, 1.0)?, bar(-2.0, 1.0, -1.0, 4.0)?, bar(1.0, 1.0, 2.0, 4.0)?])?;
+/// let u = Parts::new(vec![bar(-2.0, 0.0, 2.0, 1.0)?, bar(-2.0, 1.0, -1.0, 4.0)?, bar(1.0, 1.0, 2.0, 4.0)?])?;
 /// let peg = bar(-0.5, -1.0, 0.5, 1.0)?;
 /// let disc = (Vec2::zeros(), peg.radius());
 /// let mut cache = PartsCache::default();
 /// let d = parts_distance(
-///     PartsSide::of(u.as_ref().unwrap(), Vec2::zeros(), 0.0),
+///     PartsSide::of(&u, Vec2::zeros(), 0.0),
 ///     PartsSide::convex(&peg, &disc, Vec2::new(0.0, 3.0), 0.0),
 ///     &WalkTolerances::default(),
 ///     &mut cache,
@@ -307,9 +321,10 @@ mod tests {
             let pb: Vec<ConvexPolygon> = (0..rng.random_range(2..12))
                 .map(|_| random_part(&mut rng))
                 .collect();
-            let (_, a) = Parts::new(pa.clone()).unwrap();
-            let (_, b) = Parts::new(pb.clone()).unwrap();
-            let (a, b) = (a.unwrap(), b.unwrap());
+            let (a, b) = (
+                Parts::new(pa.clone()).unwrap(),
+                Parts::new(pb.clone()).unwrap(),
+            );
             let mut cache = PartsCache::default();
             let (mut pos, mut theta) = (
                 Vec2::new(rng.random_range(-8.0..8.0), rng.random_range(-8.0..8.0)),
@@ -351,7 +366,8 @@ mod tests {
     fn hull_holds_every_part_and_one_part_is_convex() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let parts: Vec<ConvexPolygon> = (0..6).map(|_| random_part(&mut rng)).collect();
-        let (hull, _) = Parts::new(parts.clone()).unwrap();
+        let body = Parts::new(parts.clone()).unwrap();
+        let hull = body.hull();
         let n = hull.len();
         for p in &parts {
             for v in p.vertices() {
@@ -361,8 +377,8 @@ mod tests {
                 }
             }
         }
-        let (one, none) = Parts::new(vec![parts[0].clone()]).unwrap();
-        assert!(none.is_none());
-        assert_eq!(one, parts[0]);
+        let one = Parts::new(vec![parts[0].clone()]).unwrap();
+        assert!(one.is_convex());
+        assert_eq!(one.hull(), &parts[0]);
     }
 }
