@@ -26,7 +26,7 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
         let err = |field: &str, reason: String| {
             cell.error(Some(&r.name), format!("{at}.{field}"), reason)
         };
-        check_shape_repairs(&r.shape, &r.name, &at, delta, file)?;
+        check_shape_repairs(&r.shape, &r.name, &format!("{at}.shape"), delta, file)?;
         let radius = r.shape.radius();
         if radius > limit {
             return Err(err("shape", too_large(radius, delta)));
@@ -40,7 +40,7 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
     }
     for (k, o) in cell.obstacles.iter().enumerate() {
         let at = format!("obstacles[{k}]");
-        check_shape_repairs(&o.shape, &o.name, &at, delta, file)?;
+        check_shape_repairs(&o.shape, &o.name, &format!("{at}.shape"), delta, file)?;
         let extent = o
             .shape
             .vertices()

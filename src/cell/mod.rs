@@ -1,6 +1,7 @@
 //! The model's files: reading scenes (the contract's section 1) and cells (section 3) with errors that name the
 //! file, the body and the field.
 
+mod body_shape;
 mod cell_build;
 mod cell_checks;
 mod cell_file;

@@ -33,13 +33,26 @@ fn field_of(scene: &Scene, k: usize) -> String {
 }
 
 /// Refuses a shape whose clean-up (repeated and collinear vertices removed) moved its
-/// boundary by more than [`MAX_REPAIR_SHIFT_OVER_DELTA`]·δ.
+/// boundary by more than [`MAX_REPAIR_SHIFT_OVER_DELTA`]·δ: for a body of parts, each part
+/// and their hull (a hull cleaned up could leave a part's corner out of it).
 fn check_repairs(body: &Body, at: &str, delta: f64, file: &Path) -> Result<(), InputError> {
-    check_shape_repairs(&body.shape, &body.name, at, delta, file)
+    let Some(parts) = &body.parts else {
+        return check_shape_repairs(&body.shape, &body.name, &format!("{at}.shape"), delta, file);
+    };
+    let outline = parts.outline().is_some();
+    let field = |i: usize| match outline {
+        true => format!("{at}.outline"),
+        false => format!("{at}.parts[{i}]"),
+    };
+    for (i, part) in parts.parts().iter().enumerate() {
+        check_shape_repairs(part, &body.name, &field(i), delta, file)?;
+    }
+    let whole = if outline { field(0) } else { format!("{at}.parts") };
+    check_shape_repairs(&body.shape, &body.name, &whole, delta, file)
 }
 
-/// As [`check_repairs`], for a shape of the body `name` at field `at` of any file (scenes
-/// and cells alike).
+/// As [`check_repairs`], for a polygon of the body `name` at field `at` (`robots[2].shape`)
+/// of any file (scenes and cells alike).
 pub(crate) fn check_shape_repairs(
     shape: &crate::geometry::ConvexPolygon,
     name: &str,
@@ -52,7 +65,7 @@ pub(crate) fn check_shape_repairs(
         Some(shift) if shift.distance > limit => Err(InputError::new(
             file,
             Some(name),
-            format!("{at}.shape[{}]", shift.vertex),
+            format!("{at}[{}]", shift.vertex),
             format!(
                 "this vertex lies {:e} from the rest of the shape, which the shape tolerance \
                  (relative to the shape's size) took for a repeated or collinear vertex; \

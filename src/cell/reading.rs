@@ -2,7 +2,7 @@
 //! the field that does not fit named, δ, and polygons.
 
 use super::InputError;
-use crate::geometry::{ConvexPolygon, PolygonError};
+use crate::geometry::{ConvexPolygon, PolygonError, PolygonWarning};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -149,6 +149,27 @@ pub(super) fn polygon(
     points: &[Point],
     warnings: &mut Vec<String>,
 ) -> Result<ConvexPolygon, InputError> {
+    let vertices = vertices(file, body, field, points)?;
+    let (shape, repairs) = ConvexPolygon::new(&vertices).map_err(|e| {
+        let field = match &e {
+            PolygonError::NotFinite { vertex, .. } | PolygonError::NotConvex { vertex } => {
+                format!("{field}[{vertex}]")
+            }
+            _ => field.to_owned(),
+        };
+        InputError::new(file, Some(body), field, e)
+    })?;
+    report_repairs(file, body, field, &repairs, warnings);
+    Ok(shape)
+}
+
+/// The `[x, y]` vertices of a polygon's field.
+pub(super) fn vertices(
+    file: &Path,
+    body: &str,
+    field: &str,
+    points: &[Point],
+) -> Result<Vec<[f64; 2]>, InputError> {
     let mut vertices = Vec::with_capacity(points.len());
     for (k, p) in points.iter().enumerate() {
         match p.len {
@@ -164,17 +185,19 @@ pub(super) fn polygon(
             }
         }
     }
-    let (shape, repairs) = ConvexPolygon::new(&vertices).map_err(|e| {
-        let field = match &e {
-            PolygonError::NotFinite { vertex, .. } | PolygonError::NotConvex { vertex } => {
-                format!("{field}[{vertex}]")
-            }
-            _ => field.to_owned(),
-        };
-        InputError::new(file, Some(body), field, e)
-    })?;
+    Ok(vertices)
+}
+
+/// The repairs made to a polygon's field, as warnings.
+pub(super) fn report_repairs(
+    file: &Path,
+    body: &str,
+    field: &str,
+    repairs: &[PolygonWarning],
+    warnings: &mut Vec<String>,
+) {
     if repairs.is_empty() {
-        return Ok(shape);
+        return;
     }
     // A long list of repairs says no more than its first few and its length.
     const SHOWN: usize = 8;
@@ -185,5 +208,4 @@ pub(super) fn polygon(
     if repairs.len() > SHOWN {
         warnings.push(format!("{at}: and {} more repairs", repairs.len() - SHOWN));
     }
-    Ok(shape)
 }

@@ -1,11 +1,12 @@
 //! Reading a scene file (contract section 1) into a [`Scene`].
 
+use super::body_shape::BodyShape;
 use super::object_only::object_only;
-use super::reading::{delta, document, polygon, read_file, Point};
+use super::reading::{delta, document, read_file, Point};
 use super::InputError;
 use crate::collision::{Body, Scene};
 use crate::geometry::Vec2;
-use crate::motion::{Motion, Sample, Trajectory, TrajectoryError};
+use crate::motion::{Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -24,7 +25,12 @@ struct RawScene {
 #[serde(remote = "Self")]
 struct RawRobot {
     name: String,
-    shape: Vec<Point>,
+    #[serde(default)]
+    shape: Option<Vec<Point>>,
+    #[serde(default)]
+    parts: Option<Vec<Vec<Point>>>,
+    #[serde(default)]
+    outline: Option<Vec<Point>>,
     trajectory: Samples,
 }
 
@@ -74,7 +80,12 @@ impl<'de> Deserialize<'de> for Samples {
 #[serde(remote = "Self")]
 struct RawObstacle {
     name: String,
-    shape: Vec<Point>,
+    #[serde(default)]
+    shape: Option<Vec<Point>>,
+    #[serde(default)]
+    parts: Option<Vec<Vec<Point>>>,
+    #[serde(default)]
+    outline: Option<Vec<Point>>,
 }
 
 object_only!(
@@ -83,7 +94,7 @@ object_only!(
 );
 object_only!(
     RawRobot,
-    "a robot: an object with `name`, `shape` and `trajectory`"
+    "a robot: an object with `name`, `trajectory` and one of `shape`, `parts`, `outline`"
 );
 object_only!(
     RawSample,
@@ -91,7 +102,7 @@ object_only!(
 );
 object_only!(
     RawObstacle,
-    "an obstacle: an object with `name` and `shape`"
+    "an obstacle: an object with `name` and one of `shape`, `parts`, `outline`"
 );
 
 /// A scene read from a file, with the repairs made on the way (one line each).
@@ -149,13 +160,12 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
     for (k, r) in raw.robots.into_iter().enumerate() {
         let at = format!("robots[{k}]");
         check_name(file, &r.name, &at, &mut names)?;
-        let shape = polygon(
-            file,
-            &r.name,
-            &format!("{at}.shape"),
-            &r.shape,
-            &mut warnings,
-        )?;
+        let shape = BodyShape {
+            shape: r.shape,
+            parts: r.parts,
+            outline: r.outline,
+        };
+        let parts = shape.parts(file, &r.name, &at, &mut warnings)?;
         let trajectory = Trajectory::with_missing_velocities(r.trajectory.0).map_err(|e| {
             let field = match &e {
                 TrajectoryError::Empty => format!("{at}.trajectory"),
@@ -171,23 +181,18 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
             };
             InputError::new(file, Some(&r.name), field, e)
         })?;
-        bodies.push(Body {
-            name: r.name,
-            shape,
-            motion: Motion::Sampled(trajectory),
-        });
+        bodies.push(Body::robot_of_parts(r.name, parts, trajectory));
     }
-    for (k, o) in raw.obstacles.iter().enumerate() {
+    for (k, o) in raw.obstacles.into_iter().enumerate() {
         let at = format!("obstacles[{k}]");
         check_name(file, &o.name, &at, &mut names)?;
-        let shape = polygon(
-            file,
-            &o.name,
-            &format!("{at}.shape"),
-            &o.shape,
-            &mut warnings,
-        )?;
-        bodies.push(Body::obstacle(o.name.clone(), &shape));
+        let shape = BodyShape {
+            shape: o.shape,
+            parts: o.parts,
+            outline: o.outline,
+        };
+        let parts = shape.parts(file, &o.name, &at, &mut warnings)?;
+        bodies.push(Body::obstacle_of_parts(o.name, &parts));
     }
     Ok(LoadedScene {
         scene: Scene { delta, bodies },
@@ -270,31 +275,45 @@ mod fast {
     }
 
     fn robot(c: &mut Cursor) -> Option<RawRobot> {
-        let (mut name, mut shape, mut trajectory) = (None, None, None);
+        let (mut name, mut trajectory) = (None, None);
+        let (mut shape, mut parts, mut outline) = (None, None, None);
         c.object(|c, key| match key {
             "name" => once(&mut name, c.string().map(str::to_owned)),
             "shape" => once(&mut shape, list(c, vertex)),
+            "parts" => once(&mut parts, list(c, polygon)),
+            "outline" => once(&mut outline, list(c, vertex)),
             "trajectory" => once(&mut trajectory, list(c, sample).map(Samples)),
             _ => c.skip(),
         })?;
         Some(RawRobot {
             name: name?,
-            shape: shape?,
+            shape,
+            parts,
+            outline,
             trajectory: trajectory?,
         })
     }
 
     fn obstacle(c: &mut Cursor) -> Option<RawObstacle> {
-        let (mut name, mut shape) = (None, None);
+        let mut name = None;
+        let (mut shape, mut parts, mut outline) = (None, None, None);
         c.object(|c, key| match key {
             "name" => once(&mut name, c.string().map(str::to_owned)),
             "shape" => once(&mut shape, list(c, vertex)),
+            "parts" => once(&mut parts, list(c, polygon)),
+            "outline" => once(&mut outline, list(c, vertex)),
             _ => c.skip(),
         })?;
         Some(RawObstacle {
             name: name?,
-            shape: shape?,
+            shape,
+            parts,
+            outline,
         })
+    }
+
+    fn polygon(c: &mut Cursor) -> Option<Vec<Point>> {
+        list(c, vertex)
     }
 
     fn vertex(c: &mut Cursor) -> Option<Point> {
@@ -415,7 +434,7 @@ mod tests {
             {"t": 1, "x": 2, "y": 4, "vx": 7, "theta": 1},
             {"t": 2, "x": 6, "y": 4, "vx": 5, "vy": 6, "omega": 7}]}]}"#;
         let loaded = parse_scene(text, Path::new("s.json")).unwrap();
-        let Motion::Sampled(tr) = &loaded.scene.bodies[0].motion else {
+        let crate::motion::Motion::Sampled(tr) = &loaded.scene.bodies[0].motion else {
             panic!("a robot");
         };
         let at = |k: usize| {

@@ -1,7 +1,8 @@
 //! Writing a scene in the contract's format (section 1), readable by `workcell check`.
 
-use crate::collision::Scene;
-use crate::geometry::{Posed, Vec2};
+use crate::collision::{Body, Scene};
+use crate::geometry::Vec2;
+use nalgebra::{Isometry2, Point2};
 use crate::motion::Motion;
 use serde_json::{json, Value};
 
@@ -31,20 +32,39 @@ pub fn scene_document(scene: &Scene) -> Value {
                                "theta": s.theta, "omega": s.omega})
                     })
                     .collect();
-                robots.push(
-                    json!({"name": body.name, "shape": points(body.shape.vertices()), "trajectory": samples}),
-                );
+                let (key, value) = geometry(body, |v| v);
+                robots.push(json!({"name": body.name, key: value, "trajectory": samples}));
             }
             Motion::Fixed(pose) => {
-                let placed = Posed::new(&body.shape, pose.pos.x, pose.pos.y, pose.theta);
-                let world: Vec<Vec2> = (0..placed.len()).map(|i| placed.vertex(i)).collect();
-                obstacles.push(json!({"name": body.name, "shape": points(&world)}));
+                let iso = Isometry2::new(pose.pos, pose.theta);
+                let (key, value) = geometry(body, |v| (iso * Point2::from(v)).coords);
+                obstacles.push(json!({"name": body.name, key: value}));
             }
         }
     }
     json!({"delta": scene.delta, "robots": robots, "obstacles": obstacles})
 }
 
-fn points(vertices: &[Vec2]) -> Vec<[f64; 2]> {
-    vertices.iter().map(|v| [v.x, v.y]).collect()
+/// The body's geometry as the file gives it (`shape`, `parts` or `outline`), each vertex
+/// placed by `place`.
+fn geometry(body: &Body, place: impl Fn(Vec2) -> Vec2) -> (&'static str, Value) {
+    let points = |vertices: &[Vec2]| -> Value {
+        json!(vertices
+            .iter()
+            .map(|v| {
+                let p = place(*v);
+                [p.x, p.y]
+            })
+            .collect::<Vec<_>>())
+    };
+    match &body.parts {
+        None => ("shape", points(body.shape.vertices())),
+        Some(parts) => match parts.outline() {
+            Some(outline) => ("outline", points(outline)),
+            None => (
+                "parts",
+                Value::Array(parts.parts().iter().map(|p| points(p.vertices())).collect()),
+            ),
+        },
+    }
 }

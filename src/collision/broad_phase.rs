@@ -433,11 +433,11 @@ mod tests {
             omega: 0.0,
         };
         let square = [[-0.4, -0.4], [0.4, -0.4], [0.4, 0.4], [-0.4, 0.4]];
-        Body {
-            name: name.into(),
-            shape: ConvexPolygon::new(&square).unwrap().0,
-            motion: Motion::Sampled(Trajectory::new(samples.iter().map(sample).collect()).unwrap()),
-        }
+        Body::robot(
+            name,
+            ConvexPolygon::new(&square).unwrap().0,
+            Trajectory::new(samples.iter().map(sample).collect()).unwrap(),
+        )
     }
 
     #[test]

@@ -108,6 +108,11 @@ pub struct Contact {
     pub distance: f64,
     /// 1-based index of the pair's merged interval that holds `time`.
     pub interval: usize,
+    /// For a body given by `parts`, the index of its part in contact (contract section 5;
+    /// `None` for a body given by `shape` or `outline`); left out when neither body has
+    /// `parts`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub parts: Option<[Option<usize>; 2]>,
 }
 
 /// Where a pair spent its work budget before a proof or a witness.
@@ -388,11 +393,12 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
             bodies: names(p),
             work: opts.max_work_per_pair,
         }),
-        first_contact: first.map(|(c, &p)| Contact {
+        first_contact: first.map(|(c, &(i, j))| Contact {
             time: c.time,
-            bodies: names(p),
+            bodies: names((i, j)),
             distance: c.distance,
             interval: c.interval,
+            parts: contact_parts(&scene.bodies[i], &scene.bodies[j], c.parts),
         }),
         safe_until,
         stats,
@@ -403,6 +409,18 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         pairs_pruned: all_pairs - pairs.len(),
         pair_stats,
     }
+}
+
+/// The parts in contact as the report names them: an index for a body given by `parts`,
+/// none for one given by `shape` or `outline` (its parts are the project's, not the user's).
+fn contact_parts(
+    a: &super::Body,
+    b: &super::Body,
+    parts: Option<(usize, usize)>,
+) -> Option<[Option<usize>; 2]> {
+    let listed = |body: &super::Body| body.parts.as_ref().is_some_and(|p| p.outline().is_none());
+    let (i, j) = parts?;
+    (listed(a) || listed(b)).then(|| [listed(a).then_some(i), listed(b).then_some(j)])
 }
 
 /// The number of a body's samples (0 for an obstacle): with the other body's, a bound on the

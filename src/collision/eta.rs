@@ -2,7 +2,10 @@
 
 use super::span::Probe;
 use super::{Body, Stats};
-use crate::geometry::{closest_features, FeaturePair, Posed, Vec2, WalkTolerances};
+use crate::geometry::{
+    closest_features, parts_distance, FeaturePair, PartsCache, PartsDistance, PartsSide, Posed,
+    Vec2, WalkTolerances,
+};
 use crate::motion::{lambda, BoundKind, Pose};
 
 /// Evaluates η for one pair, keeping the last closest features for the next warm start.
@@ -12,16 +15,25 @@ pub struct Eta<'s> {
     delta: f64,
     walk: WalkTolerances,
     warm: Option<FeaturePair>,
+    /// The parts' warm starts, for a pair where either body has parts.
+    parts: Option<Box<PartsCache>>,
+}
+
+/// A convex body seen as one part: its disc, centred on its frame's origin.
+fn whole_disc(body: &Body) -> (Vec2, f64) {
+    (Vec2::zeros(), body.shape.radius())
 }
 
 impl<'s> Eta<'s> {
     pub fn new(a: &'s Body, b: &'s Body, delta: f64, walk: WalkTolerances) -> Self {
+        let has_parts = a.parts.is_some() || b.parts.is_some();
         Eta {
             a,
             b,
             delta,
             walk,
             warm: None,
+            parts: has_parts.then(Box::default),
         }
     }
 
@@ -40,6 +52,8 @@ impl<'s> Eta<'s> {
 
     /// η(t): the gap between the bounding discs (eq. 13) while it is at least δ, else the
     /// exact distance from the closest-feature walk, warm-started from the previous call.
+    /// For bodies made of parts the walk runs on their hulls, and only where the hulls come
+    /// closer than δ does η become the least distance between the parts.
     /// `poses` are A's and B's poses at time `t`.
     pub fn at(&mut self, t: f64, (pose_a, pose_b): (Pose, Pose), stats: &mut Stats) -> Probe {
         // Work in a frame centred on A: far from the origin, positions lose digits but
@@ -56,12 +70,23 @@ impl<'s> Eta<'s> {
             stats.feature_steps += u64::from(d.steps);
             stats.walk_fallbacks += u64::from(d.fell_back);
             self.warm = Some(d.features);
-            let normal = if d.distance > 0.0 {
-                (d.point_b - d.point_a) / d.distance
+            if d.distance < self.delta && self.parts.is_some() {
+                // The hulls are within δ: the parts decide. Their least distance is no convex
+                // function of the motion, so the probe gives no tangent (`exact` false: the
+                // convexity certificate falls back to the discs, which bound it from below).
+                let p = self.parts_at(pose_a, rel, pose_b.theta);
+                stats.narrow_phase_calls += u64::from(p.walks);
+                stats.feature_steps += u64::from(p.steps);
+                (p.distance, false, Vec2::zeros())
             } else {
-                Vec2::zeros()
-            };
-            (d.distance, true, normal)
+                // The hull distance of a body of parts is a convex lower bound of its own.
+                let normal = if d.distance > 0.0 {
+                    (d.point_b - d.point_a) / d.distance
+                } else {
+                    Vec2::zeros()
+                };
+                (d.distance, true, normal)
+            }
         };
         Probe {
             t,
@@ -72,5 +97,32 @@ impl<'s> Eta<'s> {
             exact,
             normal,
         }
+    }
+
+    /// The least distance between the two bodies' parts, A at the origin of the frame and B
+    /// at `rel` (a convex body counts as one part).
+    fn parts_at(&mut self, pose_a: Pose, rel: Vec2, theta_b: f64) -> PartsDistance {
+        let (disc_a, disc_b) = (whole_disc(self.a), whole_disc(self.b));
+        fn side<'b>(body: &'b Body, disc: &'b (Vec2, f64), pos: Vec2, theta: f64) -> PartsSide<'b> {
+            match &body.parts {
+                Some(parts) => PartsSide::of(parts, pos, theta),
+                None => PartsSide::convex(&body.shape, disc, pos, theta),
+            }
+        }
+        let cache = self.parts.get_or_insert_with(Box::default);
+        parts_distance(
+            side(self.a, &disc_a, Vec2::zeros(), pose_a.theta),
+            side(self.b, &disc_b, rel, theta_b),
+            &self.walk,
+            cache,
+        )
+    }
+
+    /// Which part of each body is nearest the other at these poses: for the report of a
+    /// contact (`None` for a pair of convex bodies).
+    pub fn closest_parts(&mut self, (pose_a, pose_b): (Pose, Pose)) -> Option<(usize, usize)> {
+        self.parts.as_ref()?;
+        let p = self.parts_at(pose_a, pose_b.pos - pose_a.pos, pose_b.theta);
+        Some(p.parts)
     }
 }

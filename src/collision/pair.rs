@@ -17,6 +17,9 @@ pub struct PairContact {
     pub distance: f64,
     /// 1-based index of the merged interval that holds `time`.
     pub interval: usize,
+    /// For bodies made of parts, the part of each nearest the other at `time` (a convex
+    /// body is its part 0); `None` for two convex bodies.
+    pub parts: Option<(usize, usize)>,
 }
 
 /// What the check of one pair found.
@@ -94,12 +97,13 @@ pub struct PairCheck<'a> {
     found: Option<PairOutcome>,
 }
 
-fn contact(limit: &SharedLimit, p: &Probe, interval: usize) -> Option<PairContact> {
+fn contact(limit: &SharedLimit, eta: &mut Eta, p: &Probe, interval: usize) -> Option<PairContact> {
     limit.lower_to(p.t);
     Some(PairContact {
         time: p.t,
         distance: p.eta,
         interval,
+        parts: eta.closest_parts((p.pose_a, p.pose_b)),
     })
 }
 
@@ -119,7 +123,7 @@ impl<'a> PairCheck<'a> {
         let (t, poses) = grid.next().expect("a grid holds the horizon's start");
         let left = eta.at(t, poses, &mut stats);
         let found = (left.eta < s.delta).then(|| PairOutcome {
-            contact: contact(limit, &left, 1),
+            contact: contact(limit, &mut eta, &left, 1),
             safe_until: left.t,
             out_of_work: false,
         });
@@ -197,7 +201,7 @@ impl<'a> PairCheck<'a> {
                         ..witness
                     };
                     return PairOutcome {
-                        contact: contact(limit, &witness, k),
+                        contact: contact(limit, eta, &witness, k),
                         ..free(safe_until)
                     };
                 }

@@ -1,7 +1,7 @@
 //! The checker's input: bodies with their shapes and motions.
 
 use crate::cell::InputError;
-use crate::geometry::ConvexPolygon;
+use crate::geometry::{ConvexPolygon, Parts};
 use crate::motion::{Motion, Pose, Trajectory};
 use std::collections::HashSet;
 use std::path::Path;
@@ -11,8 +11,12 @@ use std::path::Path;
 pub struct Body {
     /// Name, unique in the scene.
     pub name: String,
-    /// Shape in the body frame, whose origin is the rotation centre G.
+    /// Shape in the body frame, whose origin is the rotation centre G: the body itself, or
+    /// the convex hull of its `parts`.
     pub shape: ConvexPolygon,
+    /// For a body that is not convex, the convex parts whose union it is (contract section
+    /// 5), in the same frame; `None` for a convex body.
+    pub parts: Option<Parts>,
     /// How the body moves.
     pub motion: Motion,
 }
@@ -35,6 +39,30 @@ impl Body {
         Body {
             name: name.into(),
             shape,
+            parts: None,
+            motion: Motion::Sampled(trajectory),
+        }
+    }
+
+    /// A robot made of convex parts (their union), given in its own frame, moving along
+    /// `trajectory`; its `shape` is their hull.
+    ///
+    /// ```
+    /// use workcell::collision::Body;
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{Pose, Trajectory};
+    /// let finger = ConvexPolygon::from_vertices(&[[0.5, -0.1], [1.2, -0.1], [1.2, 0.1], [0.5, 0.1]])?;
+    /// let gripper = Parts::new(vec![ConvexPolygon::rectangle(1.0, 0.6)?, finger])?;
+    /// let still = Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0))])?;
+    /// let r = Body::robot_of_parts("R1", gripper, still);
+    /// assert_eq!((r.shape.len(), r.parts.map(|p| p.len())), (6, Some(2)));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn robot_of_parts(name: impl Into<String>, parts: Parts, trajectory: Trajectory) -> Self {
+        Body {
+            name: name.into(),
+            shape: parts.hull().clone(),
+            parts: (!parts.is_convex()).then_some(parts),
             motion: Motion::Sampled(trajectory),
         }
     }
@@ -56,7 +84,28 @@ impl Body {
         Body {
             name: name.into(),
             shape: world_shape.translated(&c),
+            parts: None,
             motion: Motion::Fixed(Pose { pos: c, theta: 0.0 }),
+        }
+    }
+
+    /// A fixed obstacle made of convex parts given in world coordinates; its frame is moved
+    /// to the centroid of their hull, as [`Body::obstacle`] does.
+    ///
+    /// ```
+    /// use workcell::collision::Body;
+    /// use workcell::geometry::{Outline, Parts};
+    /// let l = Outline::new(&[[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [1.0, 1.0], [1.0, 3.0], [0.0, 3.0]])?;
+    /// let o = Body::obstacle_of_parts("L-fixture", &Parts::from_outline(&l)?);
+    /// assert_eq!(o.parts.as_ref().map(|p| p.len()), Some(2));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn obstacle_of_parts(name: impl Into<String>, world_parts: &Parts) -> Self {
+        let body = Body::obstacle(name, world_parts.hull());
+        let c = body.motion.pose_at(0.0).pos;
+        Body {
+            parts: (!world_parts.is_convex()).then(|| world_parts.translated(&c)),
+            ..body
         }
     }
 

@@ -244,11 +244,11 @@ impl Smooth {
 }
 
 fn robot(name: String, shape: &[[f64; 2]], samples: Vec<Sample>) -> Body {
-    Body {
+    Body::robot(
         name,
-        shape: polygon(shape),
-        motion: Motion::Sampled(Trajectory::new(samples).expect("generated times increase")),
-    }
+        polygon(shape),
+        Trajectory::new(samples).expect("generated times increase"),
+    )
 }
 
 /// A sample of a motion at constant velocity `vel`, `omega` through `(pos0, theta0)` at t = 0.

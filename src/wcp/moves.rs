@@ -11,7 +11,7 @@ use super::sequencer::{BoundLimits, Bounds};
 use crate::cell::{Cell, CellRobot};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::geometry::{ConvexPolygon, Vec2};
-use crate::motion::{Motion, Pose, Sample, Trajectory};
+use crate::motion::{Pose, Sample, Trajectory};
 use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -241,11 +241,11 @@ pub(crate) fn certify(
     let trajectory = Trajectory::new(samples.to_vec())
         .expect("the planner emits finite samples at increasing times");
     let mut bodies = Vec::with_capacity(obstacles.len() + 1);
-    bodies.push(Body {
-        name: robot.name.clone(),
-        shape: robot.shape.clone(),
-        motion: Motion::Sampled(trajectory),
-    });
+    bodies.push(Body::robot(
+        robot.name.clone(),
+        robot.shape.clone(),
+        trajectory,
+    ));
     bodies.extend_from_slice(obstacles);
     let report = check(
         &Scene {

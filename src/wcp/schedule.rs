@@ -6,7 +6,7 @@ use super::sequencer::Step;
 use crate::cell::Cell;
 use crate::collision::{Body, CheckReport, Scene};
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
-use crate::motion::{Motion, Pose, Sample, Trajectory};
+use crate::motion::{Pose, Sample, Trajectory};
 use crate::planning::PlannedMove;
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -475,14 +475,12 @@ impl Schedule {
     }
 
     fn body(&self, cell: &Cell, r: usize) -> Body {
-        Body {
-            name: cell.robots[r].name.clone(),
-            shape: cell.robots[r].shape.clone(),
-            motion: Motion::Sampled(
-                Trajectory::new(self.robots[r].samples.clone())
-                    .expect("schedules sample increasing times"),
-            ),
-        }
+        Body::robot(
+            cell.robots[r].name.clone(),
+            cell.robots[r].shape.clone(),
+            Trajectory::new(self.robots[r].samples.clone())
+                .expect("schedules sample increasing times"),
+        )
     }
 
     /// The first collision of a check of [`Schedule::scene`], located in the schedule.

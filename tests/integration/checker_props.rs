@@ -16,7 +16,7 @@ use std::f64::consts::PI;
 use std::sync::OnceLock;
 use workcell::collision::{check, Body, CheckOptions, CheckReport, Scene};
 use workcell::geometry::Vec2;
-use workcell::motion::{Motion, Sample, Trajectory};
+use workcell::motion::{Sample, Trajectory};
 
 const DELTA: f64 = 0.01;
 /// Instants of the dense sampling, on top of every sample time.
@@ -79,11 +79,11 @@ impl SceneSpec {
                         omega: 0.0,
                     })
                     .collect();
-                Body {
-                    name: name.to_owned(),
-                    shape: polygon(&r.shape),
-                    motion: Motion::Sampled(Trajectory::new(samples).expect("valid trajectory")),
-                }
+                Body::robot(
+                    name.to_owned(),
+                    polygon(&r.shape),
+                    Trajectory::new(samples).expect("valid trajectory"),
+                )
             })
             .collect();
         if let Some(o) = &self.obstacle {

@@ -12,7 +12,7 @@ use proptest::test_runner::TestRunner;
 use rayon::ThreadPoolBuilder;
 use workcell::collision::{check, Body, CheckOptions, CheckReport, Scene};
 use workcell::geometry::Vec2;
-use workcell::motion::{Motion, Sample, Trajectory};
+use workcell::motion::{Sample, Trajectory};
 
 const ROBOTS: usize = 10;
 const OBSTACLES: usize = 3;
@@ -49,11 +49,11 @@ fn robot(k: usize) -> impl Strategy<Value = Body> {
                     }
                 })
                 .collect();
-            Body {
-                name: format!("r{k}"),
-                shape: polygon(&shape),
-                motion: Motion::Sampled(Trajectory::new(samples).unwrap()),
-            }
+            Body::robot(
+                format!("r{k}"),
+                polygon(&shape),
+                Trajectory::new(samples).unwrap(),
+            )
         })
 }
 

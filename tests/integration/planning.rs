@@ -6,7 +6,7 @@ use proptest::prelude::*;
 use std::f64::consts::PI;
 use workcell::collision::{check, Body, CheckOptions, Scene};
 use workcell::geometry::{ConvexPolygon, Vec2};
-use workcell::motion::{Motion, Pose, Trajectory};
+use workcell::motion::{Pose, Trajectory};
 use workcell::planning::{
     angle_between, plan_move, rest_to_rest_time, time_primitives, PlanError, PlannedMove,
     PlannerOptions, RobotLimits,
@@ -74,11 +74,11 @@ fn trapezoid(d: f64, v_max: f64, a: f64, duration: Option<f64>, t: f64) -> (f64,
 /// The checker's verdict on the planned move among the obstacles.
 fn certify(robot: &ConvexPolygon, obstacles: &[ConvexPolygon], planned: &PlannedMove) {
     let samples = planned.samples.clone();
-    let mut bodies = vec![Body {
-        name: "robot".into(),
-        shape: robot.clone(),
-        motion: Motion::Sampled(Trajectory::new(samples).expect("valid samples")),
-    }];
+    let mut bodies = vec![Body::robot(
+        "robot",
+        robot.clone(),
+        Trajectory::new(samples).expect("valid samples"),
+    )];
     for (k, o) in obstacles.iter().enumerate() {
         bodies.push(Body::obstacle(format!("obstacle {k}"), o));
     }

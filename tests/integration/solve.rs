@@ -171,13 +171,11 @@ fn every_planned_move_is_clear_and_no_faster_than_the_straight_line_bound() {
                 let m = wcp::certified_move(&cell, r, a, b, &opts.planner, &obstacles)
                     .expect("every move exists here");
                 // Checked again here, independently of the table that certified it.
-                let mut bodies = vec![workcell::collision::Body {
-                    name: robot.name.clone(),
-                    shape: robot.shape.clone(),
-                    motion: workcell::motion::Motion::Sampled(
-                        workcell::motion::Trajectory::new(m.samples.clone()).unwrap(),
-                    ),
-                }];
+                let mut bodies = vec![workcell::collision::Body::robot(
+                    robot.name.clone(),
+                    robot.shape.clone(),
+                    workcell::motion::Trajectory::new(m.samples.clone()).unwrap(),
+                )];
                 bodies.extend(obstacles.iter().cloned());
                 let report = check(
                     &workcell::collision::Scene {

@@ -9,7 +9,7 @@
 
 use crate::cell::Cell;
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
-use crate::motion::{Motion, Sample, Trajectory};
+use crate::motion::{Sample, Trajectory};
 use crate::wcp::schedule::RobotSchedule;
 
 /// Values of [`least`]'s first scan, evenly spaced over the bracket: clearing need not be
@@ -30,11 +30,11 @@ pub(super) fn clears(
     opts: &CheckOptions,
 ) -> bool {
     let body = |r: usize, s: &RobotSchedule| -> Option<Body> {
-        Some(Body {
-            name: cell.robots[r].name.clone(),
-            shape: cell.robots[r].shape.clone(),
-            motion: Motion::Sampled(Trajectory::new(window(&s.samples, t0, t1)).ok()?),
-        })
+        Some(Body::robot(
+            cell.robots[r].name.clone(),
+            cell.robots[r].shape.clone(),
+            Trajectory::new(window(&s.samples, t0, t1)).ok()?,
+        ))
     };
     let (Some(a), Some(b)) = (body(x, sx), body(y, sy)) else {
         return false;
