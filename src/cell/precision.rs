@@ -47,7 +47,11 @@ fn check_repairs(body: &Body, at: &str, delta: f64, file: &Path) -> Result<(), I
     for (i, part) in parts.parts().iter().enumerate() {
         check_shape_repairs(part, &body.name, &field(i), delta, file)?;
     }
-    let whole = if outline { field(0) } else { format!("{at}.parts") };
+    let whole = if outline {
+        field(0)
+    } else {
+        format!("{at}.parts")
+    };
     check_shape_repairs(&body.shape, &body.name, &whole, delta, file)
 }
 

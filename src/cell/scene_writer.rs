@@ -2,8 +2,8 @@
 
 use crate::collision::{Body, Scene};
 use crate::geometry::Vec2;
-use nalgebra::{Isometry2, Point2};
 use crate::motion::Motion;
+use nalgebra::{Isometry2, Point2};
 use serde_json::{json, Value};
 
 /// The scene as a JSON document: robots with their body-frame shapes and full samples

@@ -32,6 +32,7 @@ mod library_api;
 mod library_inputs;
 mod narrow_phase_props;
 mod oracle;
+mod parts_checker;
 mod planning;
 mod sequencer;
 mod solve;

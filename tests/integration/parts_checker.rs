@@ -1,0 +1,532 @@
+//! The checker on bodies made of parts (contract section 5) against an independent
+//! reference: conservative advancement over the exact distance of `common` (exact
+//! orientation predicates), between every part of one body and every part of the other.
+//!
+//! Each body is generated with both of its forms: its convex parts and, where it has one,
+//! the outline that bounds the same region. The library reads one form or the other; the
+//! reference always takes the parts, and shares no code with the library.
+
+use crate::common::{exact_distance, place, proptest_config, Pt, Shape};
+use proptest::prelude::*;
+use rayon::ThreadPoolBuilder;
+use workcell::collision::{check, Body, CheckOptions, CheckReport, Scene};
+use workcell::geometry::{ConvexPolygon, Outline, Parts, Vec2};
+use workcell::motion::{Sample, Trajectory};
+
+const DELTA: f64 = 0.01;
+
+/// A body's region: convex parts (counter-clockwise), and the outline of their union when
+/// the generator knows it.
+#[derive(Clone, Debug)]
+struct BodySpec {
+    parts: Vec<Shape>,
+    outline: Option<Shape>,
+}
+
+impl BodySpec {
+    /// The library's view of it, from the parts or from the outline.
+    fn parts(&self, from_outline: bool) -> Parts {
+        match (&self.outline, from_outline) {
+            (Some(o), true) => Parts::from_outline(&Outline::new(o).expect("a simple outline"))
+                .expect("an outline cut"),
+            _ => Parts::new(
+                self.parts
+                    .iter()
+                    .map(|p| ConvexPolygon::from_vertices(p).expect("a convex part"))
+                    .collect(),
+            )
+            .expect("parts"),
+        }
+    }
+
+    /// The farthest vertex from the body frame's origin.
+    fn radius(&self) -> f64 {
+        self.parts
+            .iter()
+            .flatten()
+            .map(|p| p[0].hypot(p[1]))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Axis-aligned box from (x0, y0) to (x1, y1), counter-clockwise.
+fn bar(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+    vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
+}
+
+/// A U opening towards +x, `w` wide and `h` high, arms `t` thick, centred on the origin:
+/// a palm and two fingers (a gripper), or a fixture with a bay.
+fn u_shape(w: f64, h: f64, t: f64) -> BodySpec {
+    let (x0, x1, y0, y1) = (-0.5 * w, 0.5 * w, -0.5 * h, 0.5 * h);
+    BodySpec {
+        parts: vec![
+            bar(x0, y0, x0 + t, y1),
+            bar(x0 + t, y0, x1, y0 + t),
+            bar(x0 + t, y1 - t, x1, y1),
+        ],
+        outline: Some(vec![
+            [x0, y0],
+            [x1, y0],
+            [x1, y0 + t],
+            [x0 + t, y0 + t],
+            [x0 + t, y1 - t],
+            [x1, y1 - t],
+            [x1, y1],
+            [x0, y1],
+        ]),
+    }
+}
+
+/// An L: a foot along +x and a leg along +y, `t` thick, its corner at the origin.
+fn l_shape(a: f64, b: f64, t: f64) -> BodySpec {
+    BodySpec {
+        parts: vec![bar(0.0, 0.0, a, t), bar(0.0, t, t, b)],
+        outline: Some(vec![[0.0, 0.0], [a, 0.0], [a, t], [t, t], [t, b], [0.0, b]]),
+    }
+}
+
+/// A convex part on a circle of radius `r` around `(cx, cy)`, of `n` vertices from `phase`.
+fn round_part(cx: f64, cy: f64, r: f64, n: usize, phase: f64) -> Shape {
+    (0..n)
+        .map(|k| {
+            let a = phase + std::f64::consts::TAU * k as f64 / n as f64;
+            [cx + r * a.cos(), cy + r * a.sin()]
+        })
+        .collect()
+}
+
+fn body() -> impl Strategy<Value = BodySpec> {
+    prop_oneof![
+        (0.5f64..1.2, 0.5f64..1.2, 0.08f64..0.2).prop_map(|(w, h, t)| u_shape(w, h, t)),
+        (0.4f64..1.0, 0.4f64..1.0, 0.08f64..0.25).prop_map(|(a, b, t)| {
+            let mut l = l_shape(a, b, t);
+            // Put the frame's origin inside the foot, not at the corner.
+            let shift = |p: &mut Pt| {
+                p[0] -= 0.3 * a;
+                p[1] -= 0.5 * t
+            };
+            l.parts.iter_mut().flatten().for_each(shift);
+            l.outline.iter_mut().flatten().for_each(shift);
+            l
+        }),
+        // Scattered convex parts, overlapping or apart: no outline.
+        prop::collection::vec(
+            (
+                -0.5f64..0.5,
+                -0.5f64..0.5,
+                0.08f64..0.3,
+                3usize..7,
+                0.0f64..1.0
+            ),
+            2..6
+        )
+        .prop_map(|ps| BodySpec {
+            parts: ps
+                .iter()
+                .map(|&(x, y, r, n, ph)| round_part(x, y, r, n, ph))
+                .collect(),
+            outline: None,
+        }),
+    ]
+}
+
+#[derive(Clone, Debug)]
+struct RobotSpec {
+    body: BodySpec,
+    /// `[t, x, y, theta]`.
+    samples: Vec<[f64; 4]>,
+}
+
+/// Samples on a time grid of its own, wandering around (`cx`, 0) and turning
+/// up to a turn and a half between samples (spins that a velocity-only bound would miss).
+fn robot(cx: f64) -> impl Strategy<Value = RobotSpec> {
+    (
+        body(),
+        prop::collection::vec(
+            (0.05f64..0.6, cx - 1.0..cx + 1.0, -1.0f64..1.0, -9.0f64..9.0),
+            3..9,
+        ),
+    )
+        .prop_map(|(body, steps)| {
+            let mut t = 0.0;
+            let samples = steps
+                .iter()
+                .map(|&(dt, x, y, th)| {
+                    t += dt;
+                    [t, x, y, th]
+                })
+                .collect();
+            RobotSpec { body, samples }
+        })
+}
+
+#[derive(Clone, Debug)]
+struct SceneSpec {
+    robots: [RobotSpec; 2],
+    /// In world coordinates.
+    obstacle: BodySpec,
+    /// Which bodies the library reads from their outline.
+    from_outline: [bool; 3],
+}
+
+fn scene_spec() -> impl Strategy<Value = SceneSpec> {
+    (
+        robot(-1.8),
+        robot(1.8),
+        body(),
+        (-3.5f64..3.5, -2.5f64..2.5),
+        any::<[bool; 3]>(),
+    )
+        .prop_map(|(r0, r1, mut obstacle, (ox, oy), from_outline)| {
+            for p in obstacle
+                .parts
+                .iter_mut()
+                .chain(obstacle.outline.iter_mut())
+                .flatten()
+            {
+                p[0] += ox;
+                p[1] += oy;
+            }
+            SceneSpec {
+                robots: [r0, r1],
+                obstacle,
+                from_outline,
+            }
+        })
+}
+
+const NAMES: [&str; 3] = ["r0", "r1", "fixture"];
+
+impl SceneSpec {
+    fn scene(&self, outline: [bool; 3]) -> Scene {
+        let robot = |k: usize| {
+            let r = &self.robots[k];
+            let samples = r.samples.iter().map(|&[t, x, y, theta]| Sample {
+                t,
+                pos: Vec2::new(x, y),
+                theta,
+                vel: Vec2::zeros(),
+                omega: 0.0,
+            });
+            let trajectory = Trajectory::new(samples.collect()).expect("increasing times");
+            Body::robot_of_parts(NAMES[k], r.body.parts(outline[k]), trajectory)
+        };
+        let fixture = Body::obstacle_of_parts(NAMES[2], &self.obstacle.parts(outline[2]));
+        Scene::with_bodies(DELTA, [robot(0), robot(1), fixture]).expect("a scene")
+    }
+
+    fn horizon(&self) -> (f64, f64) {
+        let ts = self
+            .robots
+            .iter()
+            .flat_map(|r| r.samples.iter().map(|s| s[0]));
+        ts.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+            (lo.min(t), hi.max(t))
+        })
+    }
+
+    /// The parts of body `k` in the world at time `t`.
+    fn world(&self, k: usize, t: f64) -> Vec<Shape> {
+        match k {
+            2 => self.obstacle.parts.clone(),
+            _ => {
+                let r = &self.robots[k];
+                let pose = pose_at(&r.samples, t);
+                r.body.parts.iter().map(|p| place(p, pose)).collect()
+            }
+        }
+    }
+
+    /// Least exact distance between the parts of bodies `i` and `j` at `t`.
+    fn distance(&self, (i, j): (usize, usize), t: f64) -> f64 {
+        let (a, b) = (self.world(i, t), self.world(j, t));
+        a.iter()
+            .flat_map(|p| b.iter().map(move |q| exact_distance(p, q)))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// How fast the points of body `k` can move between its samples around `t`: on the
+    /// segment holding `t`, |Δ(x, y)| + R·|Δθ| over its duration (0 outside the samples).
+    fn speed_bound(&self, k: usize, t: f64) -> (f64, f64) {
+        if k == 2 {
+            return (0.0, f64::INFINITY);
+        }
+        let r = &self.robots[k];
+        let s = &r.samples;
+        let Some(i) = s.windows(2).position(|w| w[0][0] <= t && t < w[1][0]) else {
+            // At rest, until the horizon's end.
+            return (0.0, if t < s[0][0] { s[0][0] } else { f64::INFINITY });
+        };
+        let (p, q) = (s[i], s[i + 1]);
+        let travel = (q[1] - p[1]).hypot(q[2] - p[2]) + r.body.radius() * (q[3] - p[3]).abs();
+        (travel / (q[0] - p[0]), q[0])
+    }
+
+    /// Conservative advancement of one pair: the first time it comes closer than δ, with
+    /// the end of the prefix proven δ apart before it; or `None` when it never does.
+    ///
+    /// A step is (d − δ) over the speed bound of both bodies until the next sample. Near a
+    /// contact such steps shrink without end: under `min_step` the advance goes on by
+    /// `min_step`, unproven, until δ is crossed (the contact lies in between). `Err` when
+    /// the pair then moves away again: a graze too close to δ for the reference to decide.
+    fn first_contact(&self, pair: (usize, usize), min_step: f64) -> Result<Option<(f64, f64)>, ()> {
+        let (h0, h1) = self.horizon();
+        let mut t = h0;
+        // Where unproven steps began.
+        let mut unproven_from: Option<f64> = None;
+        loop {
+            let d = self.distance(pair, t);
+            if d < DELTA {
+                return Ok(Some((unproven_from.unwrap_or(t), t)));
+            }
+            let ((va, ea), (vb, eb)) = (self.speed_bound(pair.0, t), self.speed_bound(pair.1, t));
+            // Until the next sample of either, the points move no faster than va + vb.
+            let segment_end = ea.min(eb).min(h1);
+            let step = if va + vb > 0.0 {
+                (d - DELTA) / (va + vb)
+            } else {
+                f64::INFINITY
+            };
+            if step >= min_step || t >= h1 {
+                if unproven_from.is_some() {
+                    return Err(());
+                }
+                if t >= h1 {
+                    return Ok(None);
+                }
+                t = if step >= segment_end - t {
+                    segment_end
+                } else {
+                    t + step
+                };
+                continue;
+            }
+            unproven_from.get_or_insert(t);
+            t = (t + min_step).min(h1);
+        }
+    }
+}
+
+/// The pose of samples `[t, x, y, theta]` at `t`, at rest before the first and after the last.
+fn pose_at(s: &[[f64; 4]], t: f64) -> [f64; 3] {
+    crate::common::pose_at(s, t)
+}
+
+/// The reference's first contact: the end of the prefix it proves free, the time of its
+/// witness, and the pair; `None` when free.
+type Truth = Option<(f64, f64, (usize, usize))>;
+
+/// What the reference finds; `Err` for a graze it cannot decide.
+fn reference(spec: &SceneSpec, min_step: f64) -> Result<Truth, ()> {
+    let mut first: Option<(f64, f64, (usize, usize))> = None;
+    for pair in [(0, 1), (0, 2), (1, 2)] {
+        if let Some((proven, hit)) = spec.first_contact(pair, min_step)? {
+            if first.is_none_or(|(_, h, _)| hit < h) {
+                first = Some((proven, hit, pair));
+            }
+        }
+    }
+    Ok(first)
+}
+
+fn verdict_of(report: &CheckReport) -> Option<(f64, (usize, usize))> {
+    let c = report.first_contact.as_ref()?;
+    let index = |name: &str| NAMES.iter().position(|n| *n == name).unwrap();
+    Some((c.time, (index(&c.bodies[0]), index(&c.bodies[1]))))
+}
+
+/// The checker against the reference: same verdict, a contact between the reference's
+/// proven prefix and its witness (to the time tolerance), and a pair at that time truly
+/// closer than δ; the same report on 1, 2 and 4 threads.
+fn agrees(spec: &SceneSpec) -> Result<Option<bool>, TestCaseError> {
+    let scene = spec.scene(spec.from_outline);
+    let opts = CheckOptions::default();
+    let report = check(&scene, &opts);
+    let tol = report.time_tol;
+    let Ok(truth) = reference(spec, tol / 8.0) else {
+        return Ok(None); // a graze the reference cannot decide
+    };
+    // Uncertified only by a graze of δ (within the grazing allowance), never unresolved.
+    prop_assert!(
+        report.certified || report.stats.grazing > 0,
+        "{:?}",
+        report.stats
+    );
+    prop_assert_eq!(report.stats.unresolved, 0);
+    match (truth, verdict_of(&report)) {
+        (None, None) => {}
+        (Some((_, hit, pair)), None) => {
+            prop_assert!(false, "missed: {pair:?} closer than δ at t = {hit}")
+        }
+        (None, Some((t, pair))) => {
+            prop_assert!(
+                false,
+                "invented: {pair:?} at t = {t}, the reference finds none"
+            )
+        }
+        (Some((proven, hit, _)), Some((t, pair))) => {
+            let slack = 1e-12;
+            prop_assert!(
+                proven - slack <= t && t <= hit + tol + slack,
+                "contact at {t}, the reference's first in [{proven}, {hit}] (tol {tol:e})"
+            );
+            let d = spec.distance(pair, t);
+            prop_assert!(d < DELTA + 1e-9, "{pair:?} at {t} is {d} apart");
+        }
+    }
+    for threads in [1, 2, 4] {
+        let pool = ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        prop_assert_eq!(
+            &pool.install(|| check(&scene, &opts)),
+            &report,
+            "{} threads",
+            threads
+        );
+    }
+    Ok(Some(report.collision))
+}
+
+proptest! {
+    #![proptest_config(proptest_config(160))]
+
+    #[test]
+    fn parts_checker_agrees_with_conservative_advancement(spec in scene_spec()) {
+        agrees(&spec)?;
+    }
+
+    /// A body read from its parts or from its outline is one region: the same verdict, the
+    /// same pair and the same first contact, to the time tolerance.
+    #[test]
+    fn parts_and_outline_give_the_same_verdict(spec in scene_spec()) {
+        let opts = CheckOptions::default();
+        let from_parts = check(&spec.scene([false; 3]), &opts);
+        let from_outline = check(&spec.scene([true; 3]), &opts);
+        let (a, b) = (verdict_of(&from_parts), verdict_of(&from_outline));
+        prop_assert_eq!(a.is_some(), b.is_some());
+        if let (Some((ta, pa)), Some((tb, pb))) = (a, b) {
+            prop_assert!((ta - tb).abs() <= from_parts.time_tol + 1e-12, "{ta} against {tb}");
+            prop_assert_eq!(pa, pb);
+        }
+    }
+}
+
+/// The generated scenes are a mix: many collide, many are free, few are undecided.
+#[test]
+fn parts_scenes_are_mixed() {
+    let mut runner = proptest::test_runner::TestRunner::new(proptest_config(120));
+    let (mut free, mut hit, mut undecided) = (0, 0, 0);
+    for _ in 0..120 {
+        let spec = crate::common::draw(&scene_spec(), &mut runner);
+        if std::env::var("PARTS_DEBUG").is_ok() {
+            let r = check(&spec.scene(spec.from_outline), &CheckOptions::default());
+            eprintln!(
+                "{:?} {:?} {:?}",
+                r.first_contact,
+                reference(&spec, 1e-7),
+                spec.horizon()
+            );
+        }
+        match agrees(&spec).expect("agrees") {
+            Some(true) => hit += 1,
+            Some(false) => free += 1,
+            None => undecided += 1,
+        }
+    }
+    assert!(
+        free >= 20 && hit >= 20 && undecided <= 6,
+        "{free} free, {hit} hit, {undecided} undecided"
+    );
+}
+
+/// A peg in a U's bay: the hulls overlap all along, the parts never meet; then the same peg
+/// pushed into the U's floor meets part 1, which the report names.
+#[test]
+fn notch_clear_and_the_part_in_contact() {
+    let u = u_shape(1.0, 1.0, 0.2);
+    let peg = BodySpec {
+        parts: vec![bar(-0.15, -0.15, 0.15, 0.15)],
+        outline: None,
+    };
+    let spec = |x_end: f64| SceneSpec {
+        robots: [
+            RobotSpec {
+                body: peg.clone(),
+                samples: vec![[0.0, 0.45, 0.0, 0.0], [1.0, x_end, 0.0, 0.3]],
+            },
+            RobotSpec {
+                body: peg.clone(),
+                samples: vec![[0.0, 5.0, 5.0, 0.0], [1.0, 5.0, 5.0, 0.0]],
+            },
+        ],
+        obstacle: u.clone(),
+        from_outline: [false; 3],
+    };
+    let clear = spec(0.0);
+    let report = check(&clear.scene([false; 3]), &CheckOptions::default());
+    assert!(!report.collision && report.certified, "{report:?}");
+    assert!(agrees(&clear).unwrap().is_some());
+    let into_wall = spec(-0.4);
+    let report = check(&into_wall.scene([false; 3]), &CheckOptions::default());
+    let c = report.first_contact.as_ref().expect("a contact");
+    assert_eq!(c.bodies, ["r0".to_owned(), "fixture".to_owned()]);
+    assert_eq!(
+        c.parts,
+        Some([None, Some(0)]),
+        "the palm of the U, its part 0"
+    );
+    // Read from the outline, the fixture's parts are the project's own: no index.
+    let report = check(
+        &into_wall.scene([false, false, true]),
+        &CheckOptions::default(),
+    );
+    assert_eq!(report.first_contact.unwrap().parts, None);
+}
+
+/// An H-shaped robot jumps in one sample step from having a post in its upper bay to
+/// having it in its lower bay: its crossbar passes through the post between two samples
+/// where the hulls overlap and the parts are 0.2 apart. Only bisection finds the contact:
+/// the part distance is no convex function of the motion, so no tangent may certify it.
+#[test]
+fn tunnelling_through_a_crossbar_between_samples() {
+    let h = BodySpec {
+        parts: vec![
+            bar(-0.6, -0.6, -0.4, 0.6),
+            bar(0.4, -0.6, 0.6, 0.6),
+            bar(-0.4, -0.1, 0.4, 0.1),
+        ],
+        outline: None,
+    };
+    let post = BodySpec {
+        parts: vec![bar(-0.05, -0.05, 0.05, 0.05)],
+        outline: None,
+    };
+    let spec = SceneSpec {
+        robots: [
+            RobotSpec {
+                body: h,
+                samples: vec![[0.0, 0.0, -0.35, 0.0], [1.0, 0.0, 0.35, 0.0]],
+            },
+            RobotSpec {
+                body: post.clone(),
+                samples: vec![[0.0, 9.0, 9.0, 0.0], [1.0, 9.0, 9.0, 0.0]],
+            },
+        ],
+        obstacle: post,
+        from_outline: [false; 3],
+    };
+    let report = check(&spec.scene([false; 3]), &CheckOptions::default());
+    let c = report
+        .first_contact
+        .as_ref()
+        .expect("the crossbar meets the post");
+    assert_eq!(
+        (c.bodies[1].as_str(), c.parts),
+        ("fixture", Some([Some(2), None]))
+    );
+    // The crossbar's top, 0.2 below the post at first, closes in at 0.7 per unit of time.
+    assert!((c.time - (0.2 - DELTA) / 0.7).abs() < 1e-5, "{}", c.time);
+    assert_eq!(agrees(&spec).unwrap(), Some(true));
+}
