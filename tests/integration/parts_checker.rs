@@ -420,15 +420,6 @@ fn parts_scenes_are_mixed() {
     let (mut free, mut hit, mut undecided) = (0, 0, 0);
     for _ in 0..120 {
         let spec = crate::common::draw(&scene_spec(), &mut runner);
-        if std::env::var("PARTS_DEBUG").is_ok() {
-            let r = check(&spec.scene(spec.from_outline), &CheckOptions::default());
-            eprintln!(
-                "{:?} {:?} {:?}",
-                r.first_contact,
-                reference(&spec, 1e-7),
-                spec.horizon()
-            );
-        }
         match agrees(&spec).expect("agrees") {
             Some(true) => hit += 1,
             Some(false) => free += 1,
