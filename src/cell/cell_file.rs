@@ -7,6 +7,7 @@ use super::InputError;
 use crate::collision::Body;
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::Pose;
+use serde::de::IgnoredAny;
 use serde::Deserialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -26,7 +27,12 @@ struct RawCell {
 #[serde(remote = "Self")]
 struct RawRobot {
     name: String,
-    shape: Vec<Point>,
+    #[serde(default)]
+    shape: Option<Vec<Point>>,
+    #[serde(default)]
+    parts: Option<IgnoredAny>,
+    #[serde(default)]
+    outline: Option<IgnoredAny>,
     home: Vec<f64>,
     max_speed: f64,
     max_accel: f64,
@@ -37,7 +43,12 @@ struct RawRobot {
 #[serde(remote = "Self")]
 struct RawObstacle {
     name: String,
-    shape: Vec<Point>,
+    #[serde(default)]
+    shape: Option<Vec<Point>>,
+    #[serde(default)]
+    parts: Option<IgnoredAny>,
+    #[serde(default)]
+    outline: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -262,7 +273,8 @@ fn read_robot(
     let at = format!("robots[{k}]");
     let err = |field: String, reason: String| InputError::new(file, Some(&r.name), field, reason);
     names.claim(file, &r.name, &at, "robot")?;
-    let shape = polygon(file, &r.name, &format!("{at}.shape"), &r.shape, warnings)?;
+    let shape = convex_only(file, &r.name, &at, &r.shape, [&r.parts, &r.outline])?;
+    let shape = polygon(file, &r.name, &format!("{at}.shape"), shape, warnings)?;
     let home = pose(&r.home).map_err(|reason| err(format!("{at}.home"), reason))?;
     let robot = CellRobot {
         name: r.name.clone(),
@@ -305,11 +317,45 @@ fn read_obstacle(
 ) -> Result<CellObstacle, InputError> {
     let at = format!("obstacles[{k}]");
     names.claim(file, &o.name, &at, "obstacle")?;
-    let shape = polygon(file, &o.name, &format!("{at}.shape"), &o.shape, warnings)?;
+    let shape = convex_only(file, &o.name, &at, &o.shape, [&o.parts, &o.outline])?;
+    let shape = polygon(file, &o.name, &format!("{at}.shape"), shape, warnings)?;
     Ok(CellObstacle {
         name: o.name.clone(),
         shape,
     })
+}
+
+/// A cell's body is one convex `shape` until `solve` plans bodies of parts (contract
+/// section 5): `parts` and `outline` are refused by name, not ignored.
+fn convex_only<'a>(
+    file: &Path,
+    body: &str,
+    at: &str,
+    shape: &'a Option<Vec<Point>>,
+    [parts, outline]: [&Option<IgnoredAny>; 2],
+) -> Result<&'a [Point], InputError> {
+    let refuse = |field: &str, reason: &str| {
+        Err(InputError::new(
+            file,
+            Some(body),
+            format!("{at}.{field}"),
+            reason,
+        ))
+    };
+    for (key, given) in [("parts", parts.is_some()), ("outline", outline.is_some())] {
+        if given {
+            return refuse(
+                key,
+                "`workcell solve` does not plan bodies of parts yet: give one convex `shape` \
+                 (a fixture may be given as one obstacle per convex part); `workcell check` \
+                 takes `parts` and `outline`",
+            );
+        }
+    }
+    match shape {
+        Some(points) => Ok(points),
+        None => refuse("shape", "missing field `shape`"),
+    }
 }
 
 fn read_task(

@@ -33,6 +33,7 @@ mod library_inputs;
 mod narrow_phase_props;
 mod oracle;
 mod parts_checker;
+mod parts_files;
 mod planning;
 mod sequencer;
 mod solve;
