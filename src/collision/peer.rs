@@ -4,14 +4,15 @@
 //! it is what our checker is measured against, never a part of it. On each merged interval
 //! of each pair both poses are linear in time, which is exactly parry's
 //! `NonlinearRigidMotion` (constant linear and angular velocity about G). One body is
-//! rounded by δ, so that a time of impact is the first time the distance falls to δ.
+//! rounded by δ, so that a time of impact is the first time the distance falls to δ; a
+//! body of parts is parry's `Compound` of them (each part rounded).
 
 use super::pair::{merged_grid, SharedLimit};
 use super::{Body, Scene};
 use crate::geometry::ConvexPolygon;
 use parry2d_f64::math::{Pose, Vector};
 use parry2d_f64::query::{cast_shapes_nonlinear, NonlinearRigidMotion};
-use parry2d_f64::shape::{self, RoundShape};
+use parry2d_f64::shape::SharedShape;
 use rayon::prelude::*;
 
 /// What the peer found on a scene.
@@ -76,10 +77,24 @@ pub fn check_with_parry(scene: &Scene, pairs: &[(usize, usize)], delta: f64) -> 
     report
 }
 
-fn parry_polygon(p: &ConvexPolygon) -> Option<shape::ConvexPolygon> {
-    shape::ConvexPolygon::from_convex_polyline(
-        p.vertices().iter().map(|v| Vector::new(v.x, v.y)).collect(),
-    )
+fn points(p: &ConvexPolygon) -> Vec<Vector> {
+    p.vertices().iter().map(|v| Vector::new(v.x, v.y)).collect()
+}
+
+/// A body as a parry user would give it: a convex polygon, or a `Compound` of its parts
+/// (parry's bounding-volume hierarchy over them); rounded by `border` when it is not 0.
+fn parry_shape(body: &Body, border: f64) -> Option<SharedShape> {
+    let one = |p: &ConvexPolygon| match border {
+        0.0 => SharedShape::convex_polyline(points(p)),
+        _ => SharedShape::round_convex_polyline(points(p), border),
+    };
+    match &body.parts {
+        None => one(&body.shape),
+        Some(parts) => {
+            let shapes = parts.parts().iter().map(|p| Some((Pose::IDENTITY, one(p)?)));
+            Some(SharedShape::compound(shapes.collect::<Option<Vec<_>>>()?))
+        }
+    }
 }
 
 /// The first time of impact of one pair and the number of casts made; `Err` when parry
@@ -91,11 +106,8 @@ fn cast_pair(
     delta: f64,
     limit: &SharedLimit,
 ) -> Result<(Option<f64>, u64), ()> {
-    let shape_a = RoundShape {
-        inner_shape: parry_polygon(&a.shape).ok_or(())?,
-        border_radius: delta,
-    };
-    let shape_b = parry_polygon(&b.shape).ok_or(())?;
+    let shape_a = parry_shape(a, delta).ok_or(())?;
+    let shape_b = parry_shape(b, 0.0).ok_or(())?;
     let grid = merged_grid(a, b, horizon);
     let mut casts = 0;
     for w in grid.windows(2) {
@@ -119,9 +131,9 @@ fn cast_pair(
         casts += 1;
         let hit = cast_shapes_nonlinear(
             &motion(&a0, &a1),
-            &shape_a,
+            &*shape_a,
             &motion(&b0, &b1),
-            &shape_b,
+            &*shape_b,
             0.0,
             h,
             true,

@@ -6,6 +6,7 @@
 
 mod cells;
 mod conflict;
+mod parts_scenes;
 mod scenes;
 
 pub use cells::{cell_file_name, generate_cell, CellRequest, TASK_CLEARANCE};

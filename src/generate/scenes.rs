@@ -1,7 +1,7 @@
 //! Deterministic random scenes for `workcell generate`: the same kind, seed and index always
 //! give the same [`Scene`] (a ChaCha8 stream per scene, no clock, no hashing).
 
-use super::mix;
+use super::{mix, parts_scenes};
 use crate::collision::{Body, Scene};
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::{Motion, Sample, Trajectory};
@@ -38,11 +38,25 @@ pub enum Kind {
     /// their own), and a few static obstacles in spare cells; the hall grows with N. Nothing
     /// touches at t = 0; contacts come from the crossing lanes. δ = 0.01.
     Hall,
+    /// Two grippers (a palm and two fingers each) on smooth motions like [`Kind::Pairs`]:
+    /// fingers meet fingers or slip between them. About half the scenes collide. δ = 0.01.
+    Grippers,
+    /// A gripper and a convex robot wandering among an L- and a U-shaped fixture given as
+    /// outlines. δ = 0.01.
+    Fixtures,
+    /// A box driving into a U-shaped fixture's bay and out again, 2δ to 4δ from its walls:
+    /// the hulls overlap, the parts never meet. Always free. δ = 0.01.
+    Bay,
+    /// Two combs of 3 to 6 teeth, one lowered between the other's teeth 2δ to 4δ from them
+    /// and raised again. Always free. δ = 0.01.
+    NotchClear,
+    /// Two bodies of 10 to 30 convex parts on smooth motions; about half collide. δ = 0.01.
+    ManyParts,
 }
 
 impl Kind {
     /// Every kind, in documentation order.
-    pub const ALL: [Kind; 7] = [
+    pub const ALL: [Kind; 12] = [
         Kind::Pairs,
         Kind::Tunnelling,
         Kind::NearMiss,
@@ -50,6 +64,20 @@ impl Kind {
         Kind::BadVelocities,
         Kind::LargeCoordinates,
         Kind::Hall,
+        Kind::Grippers,
+        Kind::Fixtures,
+        Kind::Bay,
+        Kind::NotchClear,
+        Kind::ManyParts,
+    ];
+
+    /// The kinds whose bodies are not convex (contract section 5).
+    pub const PARTS: [Kind; 5] = [
+        Kind::Grippers,
+        Kind::Fixtures,
+        Kind::Bay,
+        Kind::NotchClear,
+        Kind::ManyParts,
     ];
 
     /// The name on the command line and in file names, e.g. `near-miss`.
@@ -62,6 +90,11 @@ impl Kind {
             Kind::BadVelocities => "bad-velocities",
             Kind::LargeCoordinates => "large-coordinates",
             Kind::Hall => "hall",
+            Kind::Grippers => "grippers",
+            Kind::Fixtures => "fixtures",
+            Kind::Bay => "bay",
+            Kind::NotchClear => "notch-clear",
+            Kind::ManyParts => "many-parts",
         }
     }
 
@@ -125,6 +158,11 @@ pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene
         Kind::BadVelocities => bad_velocities(rng),
         Kind::LargeCoordinates => large_coordinates(rng),
         Kind::Hall => hall(rng, robots.max(1)),
+        Kind::Grippers => parts_scenes::grippers(rng),
+        Kind::Fixtures => parts_scenes::fixtures(rng),
+        Kind::Bay => parts_scenes::bay(rng, kind.delta()),
+        Kind::NotchClear => parts_scenes::notch_clear(rng, kind.delta()),
+        Kind::ManyParts => parts_scenes::many_parts(rng),
     };
     Scene {
         delta: kind.delta(),
@@ -132,10 +170,10 @@ pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene
     }
 }
 
-type R = ChaCha8Rng;
+pub(super) type R = ChaCha8Rng;
 
 /// One of two values, evenly.
-fn pick<T: Copy>(rng: &mut R, of: [T; 2]) -> T {
+pub(super) fn pick<T: Copy>(rng: &mut R, of: [T; 2]) -> T {
     of[rng.random_range(0..2usize)]
 }
 
@@ -178,7 +216,7 @@ fn rectangle(a: f64, b: f64, phi: f64) -> Vec<[f64; 2]> {
 
 /// `n` strictly increasing times from `t0` to `t1`, with steps between 0.3 and 1.7 times
 /// the mean step.
-fn time_grid(rng: &mut R, n: usize, t0: f64, t1: f64) -> Vec<f64> {
+pub(super) fn time_grid(rng: &mut R, n: usize, t0: f64, t1: f64) -> Vec<f64> {
     let steps: Vec<f64> = (1..n).map(|_| rng.random_range(0.3..1.7)).collect();
     let total: f64 = steps.iter().sum();
     let mut t = vec![t0];
@@ -193,14 +231,14 @@ fn time_grid(rng: &mut R, n: usize, t0: f64, t1: f64) -> Vec<f64> {
 
 /// A smooth motion in (x, y, θ): for each coordinate a base value, a drift rate and a sum of
 /// sinusoids `(amplitude, angular frequency, phase)`.
-struct Smooth {
+pub(super) struct Smooth {
     coords: [(f64, f64, Vec<[f64; 3]>); 3],
 }
 
 impl Smooth {
     /// Wanders around `centre` by up to about `reach` (three sinusoids each in x and y) and
     /// turns (a drift and two sinusoids in θ).
-    fn random(rng: &mut R, centre: [f64; 2], reach: f64) -> Smooth {
+    pub(super) fn random(rng: &mut R, centre: [f64; 2], reach: f64) -> Smooth {
         let mut waves = |n: usize, amp: f64| -> Vec<[f64; 3]> {
             (0..n)
                 .map(|_| {
@@ -225,7 +263,7 @@ impl Smooth {
     }
 
     /// The sample at time `t`, with the exact derivatives as velocities.
-    fn sample(&self, t: f64) -> Sample {
+    pub(super) fn sample(&self, t: f64) -> Sample {
         let [x, y, th] = self.coords.each_ref().map(|(base, drift, waves)| {
             waves
                 .iter()
