@@ -3,8 +3,8 @@
 use super::span::Probe;
 use super::{Body, Stats};
 use crate::geometry::{
-    closest_features, parts_distance, FeaturePair, PartsCache, PartsDistance, PartsSide, Posed,
-    Vec2, WalkTolerances,
+    bounding_box, closest_features, parts_distance, FeaturePair, PartsCache, PartsDistance,
+    PartsSide, PartsTolerance, Posed, Vec2, WalkTolerances,
 };
 use crate::motion::{lambda, BoundKind, Pose};
 
@@ -17,12 +17,14 @@ pub struct Eta<'s> {
     warm: Option<FeaturePair>,
     /// The parts' warm starts, for a pair where either body has parts.
     parts: Option<Box<PartsCache>>,
+    /// The boxes of A and B as one part each (used for a convex body of such a pair).
+    boxes: [[f64; 4]; 2],
 }
 
-/// A convex body seen as one part: its disc, centred on its frame's origin.
-fn whole_disc(body: &Body) -> (Vec2, f64) {
-    (Vec2::zeros(), body.shape.radius())
-}
+/// How far short of the least part distance η may stop, above δ, relative to δ: far below
+/// what any certificate notices, and enough to skip pairs of parts that are as near as the
+/// nearest up to rounding (parallel teeth of two combs).
+const PARTS_SLACK: f64 = 1e-3;
 
 impl<'s> Eta<'s> {
     pub fn new(a: &'s Body, b: &'s Body, delta: f64, walk: WalkTolerances) -> Self {
@@ -34,6 +36,10 @@ impl<'s> Eta<'s> {
             walk,
             warm: None,
             parts: has_parts.then(Box::default),
+            boxes: match has_parts {
+                true => [bounding_box(&a.shape), bounding_box(&b.shape)],
+                false => [[0.0; 4]; 2],
+            },
         }
     }
 
@@ -102,18 +108,22 @@ impl<'s> Eta<'s> {
     /// The least distance between the two bodies' parts, A at the origin of the frame and B
     /// at `rel` (a convex body counts as one part).
     fn parts_at(&mut self, pose_a: Pose, rel: Vec2, theta_b: f64) -> PartsDistance {
-        let (disc_a, disc_b) = (whole_disc(self.a), whole_disc(self.b));
-        fn side<'b>(body: &'b Body, disc: &'b (Vec2, f64), pos: Vec2, theta: f64) -> PartsSide<'b> {
+        fn side<'b>(body: &'b Body, aabb: &'b [f64; 4], pos: Vec2, theta: f64) -> PartsSide<'b> {
             match &body.parts {
                 Some(parts) => PartsSide::of(parts, pos, theta),
-                None => PartsSide::convex(&body.shape, disc, pos, theta),
+                None => PartsSide::convex(&body.shape, aabb, pos, theta),
             }
         }
+        let exactness = PartsTolerance {
+            exact_below: self.delta,
+            slack: PARTS_SLACK * self.delta,
+        };
         let cache = self.parts.get_or_insert_with(Box::default);
         parts_distance(
-            side(self.a, &disc_a, Vec2::zeros(), pose_a.theta),
-            side(self.b, &disc_b, rel, theta_b),
+            side(self.a, &self.boxes[0], Vec2::zeros(), pose_a.theta),
+            side(self.b, &self.boxes[1], rel, theta_b),
             &self.walk,
+            exactness,
             cache,
         )
     }

@@ -91,7 +91,10 @@ fn parry_shape(body: &Body, border: f64) -> Option<SharedShape> {
     match &body.parts {
         None => one(&body.shape),
         Some(parts) => {
-            let shapes = parts.parts().iter().map(|p| Some((Pose::IDENTITY, one(p)?)));
+            let shapes = parts
+                .parts()
+                .iter()
+                .map(|p| Some((Pose::IDENTITY, one(p)?)));
             Some(SharedShape::compound(shapes.collect::<Option<Vec<_>>>()?))
         }
     }

@@ -21,7 +21,9 @@ pub use brute_force::brute_force_distance;
 pub use feature::{Feature, FeaturePair};
 pub use lin_canny::{closest_features, Distance, WalkTolerances};
 pub use outline::{Outline, OutlineError};
-pub use parts::{parts_distance, Parts, PartsCache, PartsDistance, PartsSide};
+pub use parts::{
+    bounding_box, parts_distance, Parts, PartsCache, PartsDistance, PartsSide, PartsTolerance,
+};
 pub use polygon::{ConvexPolygon, PolygonError, PolygonWarning, RepairShift};
 pub use posed::Posed;
 

@@ -15,8 +15,8 @@ use super::{OutlineError, PolygonError, WalkTolerances};
 pub struct Parts {
     hull: ConvexPolygon,
     parts: Vec<ConvexPolygon>,
-    /// Each part's bounding disc: its centroid and the farthest vertex from it.
-    discs: Vec<(Vec2, f64)>,
+    /// Each part's axis-aligned box in the body frame, for the bounds of a part query.
+    boxes: Vec<[f64; 4]>,
     /// The outline the parts were cut from (pictures draw it, not the seams).
     outline: Option<Vec<Vec2>>,
 }
@@ -38,22 +38,11 @@ impl Parts {
             [one] => one.clone(),
             _ => convex_hull(parts.iter().flat_map(|p| p.vertices().iter().copied()))?,
         };
-        let discs = parts
-            .iter()
-            .map(|p| {
-                let c = p.centroid();
-                (
-                    c,
-                    p.vertices()
-                        .iter()
-                        .fold(0.0f64, |r, v| r.max((v - c).norm())),
-                )
-            })
-            .collect();
+        let boxes = parts.iter().map(bounding_box).collect();
         Ok(Parts {
             hull,
             parts,
-            discs,
+            boxes,
             outline: None,
         })
     }
@@ -94,7 +83,13 @@ impl Parts {
         Parts {
             hull: self.hull.translated(offset),
             parts: self.parts.iter().map(|p| p.translated(offset)).collect(),
-            discs: self.discs.iter().map(|(c, r)| (c - offset, *r)).collect(),
+            boxes: self
+                .boxes
+                .iter()
+                .map(|[x0, y0, x1, y1]| {
+                    [x0 - offset.x, y0 - offset.y, x1 - offset.x, y1 - offset.y]
+                })
+                .collect(),
             outline: self
                 .outline
                 .as_ref()
@@ -148,12 +143,24 @@ fn convex_hull(points: impl Iterator<Item = Vec2>) -> Result<ConvexPolygon, Poly
     ConvexPolygon::from_vertices(&corners)
 }
 
-/// One side of a part query: a body's convex pieces, their discs and its pose (relative
-/// to the other body's frame, as η works).
+/// The axis-aligned box of a polygon's vertices in its own frame: `[x0, y0, x1, y1]`.
+pub fn bounding_box(p: &ConvexPolygon) -> [f64; 4] {
+    p.vertices().iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |[x0, y0, x1, y1], v| [x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y)],
+    )
+}
+
+/// One side of a part query: a body's convex pieces, their boxes in its frame and its pose.
 #[derive(Clone, Copy)]
 pub struct PartsSide<'a> {
     parts: &'a [ConvexPolygon],
-    discs: &'a [(Vec2, f64)],
+    boxes: &'a [[f64; 4]],
     pos: Vec2,
     theta: f64,
 }
@@ -163,34 +170,43 @@ impl<'a> PartsSide<'a> {
     pub fn of(parts: &'a Parts, pos: Vec2, theta: f64) -> Self {
         PartsSide {
             parts: &parts.parts,
-            discs: &parts.discs,
+            boxes: &parts.boxes,
             pos,
             theta,
         }
     }
 
-    /// A convex body as one part, its disc centred on its frame's origin.
-    pub fn convex(shape: &'a ConvexPolygon, disc: &'a (Vec2, f64), pos: Vec2, theta: f64) -> Self {
+    /// A convex body as one part; `aabb` is its [`bounding_box`].
+    pub fn convex(shape: &'a ConvexPolygon, aabb: &'a [f64; 4], pos: Vec2, theta: f64) -> Self {
         PartsSide {
             parts: std::slice::from_ref(shape),
-            discs: std::slice::from_ref(disc),
+            boxes: std::slice::from_ref(aabb),
             pos,
             theta,
         }
-    }
-
-    fn disc_centre(&self, i: usize) -> Vec2 {
-        let (c, s) = (self.discs[i].0, self.theta.sin_cos());
-        self.pos + Vec2::new(s.1 * c.x - s.0 * c.y, s.0 * c.x + s.1 * c.y)
     }
 }
 
-/// The least distance between two bodies' parts, and which parts.
+/// How exact a part query must be. Below `exact_below` (δ) the least distance is exact, so
+/// that a contact is always real. Above it a lower bound will do (η only has to bound the
+/// distance from below): the search may stop up to `slack` short of the least distance, never
+/// under `exact_below`, which spares the walks of pairs that are all about as near.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PartsTolerance {
+    /// Exact below this distance (δ).
+    pub exact_below: f64,
+    /// How far below the least distance the answer may be, above `exact_below`.
+    pub slack: f64,
+}
+
+/// The least distance between two bodies' parts (a lower bound within the tolerance), and
+/// the nearest pair found.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PartsDistance {
-    /// Euclidean distance of the closest pair of parts; 0 when some pair touches.
+    /// A lower bound of the least distance between the parts, exact below `exact_below`;
+    /// 0 when some pair touches.
     pub distance: f64,
-    /// That pair: the part of A, the part of B.
+    /// The nearest pair walked: the part of A, the part of B.
     pub parts: (usize, usize),
     /// Closest-feature walks run.
     pub walks: u32,
@@ -199,31 +215,34 @@ pub struct PartsDistance {
 }
 
 /// What a part query keeps between calls on the same pair: the last closest features of
-/// every pair of parts (for warm starts) and a candidate list.
+/// every pair of parts (for warm starts), and room for B's boxes and the pairs' bounds.
 #[derive(Clone, Debug, Default)]
 pub struct PartsCache {
     warm: Vec<Option<FeaturePair>>,
-    candidates: Vec<(f64, u32, u32)>,
-    centres: Vec<Vec2>,
+    boxes_b: Vec<[f64; 4]>,
+    gaps: Vec<f64>,
 }
 
-/// The exact least distance between two bodies made of parts, best-first: every pair of
-/// parts gets the gap between its discs as a lower bound; the pairs are walked nearest bound
-/// first, and the search stops once the next bound is no less than the least distance found.
+/// The least distance between two bodies made of parts, nearest first. Every pair of parts
+/// gets a lower bound, the distance between their boxes in A's frame (A's boxes are fixed
+/// there; B's are its boxes' corners moved in): the pair of least bound is walked first,
+/// then every pair whose bound is below the least distance found, less the slack the
+/// tolerance allows. Walks are warm-started from the pair's features at the last call.
 ///
 /// ```
-/// use workcell::geometry::{parts_distance, ConvexPolygon, Parts, PartsCache, PartsSide, Vec2, WalkTolerances};
+/// use workcell::geometry::{bounding_box, parts_distance, ConvexPolygon, Parts, PartsCache, PartsSide, PartsTolerance, Vec2, WalkTolerances};
 /// let bar = |x0: f64, y0: f64, x1: f64, y1: f64| ConvexPolygon::from_vertices(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]);
 /// // A U open upwards, and a peg hanging in its bay: the hulls overlap, the parts do not.
 /// let u = Parts::new(vec![bar(-2.0, 0.0, 2.0, 1.0)?, bar(-2.0, 1.0, -1.0, 4.0)?, bar(1.0, 1.0, 2.0, 4.0)?])?;
 /// let peg = bar(-0.5, -1.0, 0.5, 1.0)?;
-/// let disc = (Vec2::zeros(), peg.radius());
-/// let mut cache = PartsCache::default();
+/// let aabb = bounding_box(&peg);
+/// let exact = PartsTolerance { exact_below: f64::INFINITY, slack: 0.0 };
 /// let d = parts_distance(
 ///     PartsSide::of(&u, Vec2::zeros(), 0.0),
-///     PartsSide::convex(&peg, &disc, Vec2::new(0.0, 3.0), 0.0),
+///     PartsSide::convex(&peg, &aabb, Vec2::new(0.0, 3.0), 0.0),
 ///     &WalkTolerances::default(),
-///     &mut cache,
+///     exact,
+///     &mut PartsCache::default(),
 /// );
 /// assert!((d.distance - 0.5).abs() < 1e-12); // 0.5 to each arm of the U, 1 to its floor
 /// assert!(d.parts.0 == 1 || d.parts.0 == 2);
@@ -233,6 +252,7 @@ pub fn parts_distance(
     a: PartsSide,
     b: PartsSide,
     tol: &WalkTolerances,
+    exactness: PartsTolerance,
     cache: &mut PartsCache,
 ) -> PartsDistance {
     let (na, nb) = (a.parts.len(), b.parts.len());
@@ -241,47 +261,86 @@ pub fn parts_distance(
     }
     let PartsCache {
         warm,
-        candidates,
-        centres,
+        boxes_b,
+        gaps,
     } = cache;
-    centres.clear();
-    centres.extend((0..nb).map(|j| b.disc_centre(j)));
-    candidates.clear();
-    for i in 0..na {
-        let (ca, ra) = (a.disc_centre(i), a.discs[i].1);
-        for (j, cb) in centres.iter().enumerate() {
-            let gap = (cb - ca).norm() - ra - b.discs[j].1;
-            candidates.push((gap, i as u32, j as u32));
+    // B's boxes in A's frame: R(−θa)·(R(θb)·corner + pos_b − pos_a).
+    let (sa, ca) = a.theta.sin_cos();
+    let (sr, cr) = (b.theta - a.theta).sin_cos();
+    let d = b.pos - a.pos;
+    let shift = Vec2::new(ca * d.x + sa * d.y, -sa * d.x + ca * d.y);
+    boxes_b.clear();
+    boxes_b.extend(b.boxes.iter().map(|&[x0, y0, x1, y1]| {
+        let corner = |x: f64, y: f64| (cr * x - sr * y + shift.x, sr * x + cr * y + shift.y);
+        let cs = [
+            corner(x0, y0),
+            corner(x1, y0),
+            corner(x1, y1),
+            corner(x0, y1),
+        ];
+        cs.iter().fold(
+            [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |[a0, b0, a1, b1], &(x, y)| [a0.min(x), b0.min(y), a1.max(x), b1.max(y)],
+        )
+    }));
+    // Every pair's bound (squared box distance) and the least of them.
+    gaps.clear();
+    let mut first = (f64::INFINITY, 0);
+    for ba in a.boxes {
+        for bb in boxes_b.iter() {
+            let gx = (ba[0] - bb[2]).max(bb[0] - ba[2]).max(0.0);
+            let gy = (ba[1] - bb[3]).max(bb[1] - ba[3]).max(0.0);
+            let g2 = gx * gx + gy * gy;
+            if g2 < first.0 {
+                first = (g2, gaps.len());
+            }
+            gaps.push(g2);
         }
     }
-    candidates.sort_unstable_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
     let mut best = PartsDistance {
         distance: f64::INFINITY,
         parts: (0, 0),
         walks: 0,
         steps: 0,
     };
-    for &(gap, i, j) in candidates.iter() {
-        if gap >= best.distance {
-            break;
-        }
-        let (i, j) = (i as usize, j as usize);
+    let mut walk = |k: usize, best: &mut PartsDistance| {
+        let (i, j) = (k / nb, k % nb);
         let pa = Posed::new(&a.parts[i], a.pos.x, a.pos.y, a.theta);
         let pb = Posed::new(&b.parts[j], b.pos.x, b.pos.y, b.theta);
-        let warm = &mut warm[i * nb + j];
-        let d = closest_features(&pa, &pb, *warm, tol);
-        *warm = Some(d.features);
+        let d = closest_features(&pa, &pb, warm[k], tol);
+        warm[k] = Some(d.features);
         best.walks += 1;
         best.steps += d.steps;
-        // A tie keeps the pair met first in the (deterministic) order of the bounds.
         if d.distance < best.distance {
             best.distance = d.distance;
             best.parts = (i, j);
         }
-        if best.distance == 0.0 {
-            break;
+    };
+    walk(first.1, &mut best);
+    // Pairs bounded below `cut` may be nearer than the best found: walk them; the least
+    // bound of those skipped above it, if below the best, is the answer.
+    let cut = |best: f64| {
+        let slack = exactness.slack.min(best - exactness.exact_below).max(0.0);
+        best - slack
+    };
+    let mut skipped = f64::INFINITY;
+    for (k, &gap) in gaps.iter().enumerate() {
+        if k == first.1 || best.distance == 0.0 {
+            continue;
+        }
+        let c = cut(best.distance);
+        if gap < c * c {
+            walk(k, &mut best);
+        } else if gap < best.distance * best.distance {
+            skipped = skipped.min(gap);
         }
     }
+    best.distance = best.distance.min(skipped.sqrt());
     best
 }
 
@@ -308,8 +367,9 @@ mod tests {
             .unwrap_or_else(|_| ConvexPolygon::rectangle(r, r).unwrap())
     }
 
-    /// Best-first with its early exit finds the least distance over every pair of parts,
-    /// and a pair that attains it; warm starts carried from pose to pose change nothing.
+    /// Nearest first with its early exit finds the least distance over every pair of parts,
+    /// and a pair that attains it; warm starts carried from pose to pose change nothing;
+    /// with slack, a lower bound within it that is exact below its floor.
     #[test]
     fn best_first_agrees_with_every_pair() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
@@ -334,12 +394,20 @@ mod tests {
                 pos += Vec2::new(rng.random_range(-0.3..0.3), rng.random_range(-0.3..0.3));
                 theta += rng.random_range(-0.5..0.5);
                 let ta = rng.random_range(-3.0..3.0);
-                let d = parts_distance(
-                    PartsSide::of(&a, Vec2::zeros(), ta),
-                    PartsSide::of(&b, pos, theta),
-                    &tol,
-                    &mut cache,
-                );
+                let query = |exactness, cache: &mut PartsCache| {
+                    parts_distance(
+                        PartsSide::of(&a, Vec2::zeros(), ta),
+                        PartsSide::of(&b, pos, theta),
+                        &tol,
+                        exactness,
+                        cache,
+                    )
+                };
+                let exact = PartsTolerance {
+                    exact_below: f64::INFINITY,
+                    slack: 0.0,
+                };
+                let d = query(exact, &mut cache);
                 let pair = |i: usize, j: usize| {
                     brute_force_distance(
                         &Posed::new(&pa[i], 0.0, 0.0, ta),
@@ -358,6 +426,21 @@ mod tests {
                 );
                 assert!((pair(d.parts.0, d.parts.1) - d.distance).abs() <= 1e-9);
                 assert!(d.walks as usize <= pa.len() * pb.len());
+                // With slack: a lower bound within it, never under the floor, exact below.
+                let loose = PartsTolerance {
+                    exact_below: rng.random_range(0.0..3.0),
+                    slack: 0.5,
+                };
+                let l = query(loose, &mut cache).distance;
+                assert!(
+                    l <= least + 1e-9 && l >= least - loose.slack - 1e-9,
+                    "{l} for {least}"
+                );
+                if least < loose.exact_below {
+                    assert!((l - least).abs() <= 1e-9, "{l} for {least} below the floor");
+                } else {
+                    assert!(l >= loose.exact_below - 1e-12, "{l} under the floor");
+                }
             }
         }
     }
