@@ -18,7 +18,7 @@ use std::time::Duration;
 use webdriver::{binaries, Browser};
 use workcell::cell::load_scene;
 use workcell::collision::Scene;
-use workcell::geometry::Posed;
+use workcell::geometry::Vec2;
 
 /// How far a drawn vertex may be from where the trajectory puts it, in pixels.
 const PIXEL: f64 = 1.0;
@@ -123,23 +123,29 @@ impl Frame {
     }
 }
 
-/// Vertices of every body matching `robots` (robots or obstacles) at `t`, in pixels.
+/// Vertices of every body matching `robots` (robots or obstacles) at `t`, in pixels: a
+/// polygon per convex body, its outline for a body given by one, each part for a body given
+/// by parts.
 fn expected(scene: &Scene, frame: &Frame, t: f64, robots: bool) -> Vec<Vec<[f64; 2]>> {
-    scene
-        .bodies
-        .iter()
-        .filter(|body| body.is_robot() == robots)
-        .map(|body| {
-            let p = body.motion.pose_at(t);
-            let placed = Posed::new(&body.shape, p.pos.x, p.pos.y, p.theta);
-            (0..placed.len())
-                .map(|i| {
-                    let v = placed.vertex(i);
-                    frame.px(v.x, v.y)
-                })
+    let mut drawn = Vec::new();
+    for body in scene.bodies.iter().filter(|body| body.is_robot() == robots) {
+        let p = body.motion.pose_at(t);
+        let place = |local: &[Vec2]| -> Vec<[f64; 2]> {
+            let (s, c) = p.theta.sin_cos();
+            local
+                .iter()
+                .map(|v| frame.px(p.pos.x + c * v.x - s * v.y, p.pos.y + s * v.x + c * v.y))
                 .collect()
-        })
-        .collect()
+        };
+        match &body.parts {
+            None => drawn.push(place(body.shape.vertices())),
+            Some(parts) => match parts.outline() {
+                Some(outline) => drawn.push(place(outline)),
+                None => drawn.extend(parts.parts().iter().map(|q| place(q.vertices()))),
+            },
+        }
+    }
+    drawn
 }
 
 fn assert_near(drawn: &[Vec<[f64; 2]>], want: &[Vec<[f64; 2]>], what: &str) {
@@ -174,7 +180,8 @@ fn robots_follow_the_trajectories(b: &Browser, scene: &Scene, times: &[f64], wha
     for &t in times {
         let shown = set_time(b, t);
         assert!((shown - t.clamp(t0.min(0.0), t1)).abs() <= 1e-9 * t1.abs().max(1.0));
-        let drawn = polygons(b, "#robots polygon");
+        // The bodies' polygons (the seams of an outline have no fill).
+        let drawn = polygons(b, "#robots polygon[fill-opacity]");
         assert_near(
             &drawn,
             &expected(scene, &frame, shown, true),
@@ -364,5 +371,52 @@ fn animated_pages_in_headless_chromium() {
     assert_eq!(ticks, 1);
     play_and_pause(&b);
     no_console_errors(&b, "check page");
+
+    // Bodies of parts: drawn part by part, an outline as itself, its seams on hover only.
+    let scene_file = temp("parts.json");
+    let text = json!({
+        "delta": 0.01,
+        "robots": [
+            {"name": "gripper", "parts": [[[-0.3, -0.3], [0.1, -0.3], [0.1, 0.3], [-0.3, 0.3]],
+                                        [[0.1, 0.15], [0.6, 0.15], [0.6, 0.25], [0.1, 0.25]],
+                                        [[0.1, -0.25], [0.6, -0.25], [0.6, -0.15], [0.1, -0.15]]],
+             "trajectory": [{"t": 0, "x": -1, "y": 0}, {"t": 2, "x": 1, "y": 0.2, "theta": 0.7}]},
+            {"name": "L", "outline": [[0, 0], [0.8, 0], [0.8, 0.2], [0.2, 0.2], [0.2, 0.6], [0, 0.6]],
+             "trajectory": [{"t": 0, "x": 1, "y": -1.5}, {"t": 2, "x": -1, "y": -1.2, "theta": -2}]}
+        ],
+        "obstacles": [{"name": "U", "outline": [[2, -1], [3, -1], [3, 1], [2, 1], [2, 0.8],
+                                                [2.8, 0.8], [2.8, -0.8], [2, -0.8]]}]
+    });
+    std::fs::write(&scene_file, text.to_string()).unwrap();
+    let page = temp("parts.html");
+    let out = workcell(&[
+        "check",
+        scene_file.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let scene = load_scene(&scene_file).unwrap().scene;
+    b.open(&format!("file://{}", page.display()));
+    robots_follow_the_trajectories(&b, &scene, &[0.0, 0.7, 1.3, 2.0], "parts page");
+    let seams =
+        "return Array.from(document.querySelectorAll('#robot-1 polygon:not([fill-opacity])'))\
+                 .map(p => p.getAttribute('visibility'));";
+    let hidden = b.run(seams, json!([]));
+    assert_eq!(
+        hidden,
+        json!(["hidden", "hidden"]),
+        "the L's two parts, hidden"
+    );
+    b.run(
+        "document.getElementById('robot-1').dispatchEvent(new MouseEvent('mouseenter'));",
+        json!([]),
+    );
+    assert_eq!(b.run(seams, json!([])), json!(["visible", "visible"]));
+    no_console_errors(&b, "parts page");
     let _ = std::fs::remove_dir_all(temp_dir());
 }

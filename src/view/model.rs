@@ -3,8 +3,8 @@
 
 use crate::cell::Cell;
 use crate::collision::{CheckReport, Scene, Verdict};
-use crate::geometry::{closest_features, Posed, WalkTolerances};
-use crate::motion::{Motion, Pose};
+use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
+use crate::motion::Motion;
 use crate::wcp::remedy_json::{ChangeJson, LegJson, PieceJson};
 use crate::wcp::report::ResultJson;
 use serde::Serialize;
@@ -48,8 +48,16 @@ pub struct RobotView {
     pub name: String,
     /// Its colour in every picture.
     pub colour: &'static str,
-    /// Its shape in its own frame (G at the origin).
+    /// Its shape in its own frame (G at the origin): the body, its outline, or for a body
+    /// given by parts the hull of them (not drawn).
     pub shape: Vec<[f64; 2]>,
+    /// The convex parts of a body that has them, in its frame: drawn as the body when it was
+    /// given by parts; the seams of its outline, shown faintly on hover, when `outlined`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub parts: Vec<Vec<[f64; 2]>>,
+    /// Whether the body was given by an outline (`shape` holds it).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub outlined: bool,
     /// Its samples `[t, x, y, θ]`: the checker interpolates linearly between them.
     pub samples: Vec<[f64; 4]>,
     /// Its home pose `[x, y, θ]` (cells only).
@@ -127,7 +135,17 @@ fn robots_of(scene: &Scene) -> Vec<RobotView> {
         .map(|(r, b)| RobotView {
             name: b.name.clone(),
             colour: COLOURS[r % COLOURS.len()],
-            shape: b.shape.vertices().iter().map(|v| [v.x, v.y]).collect(),
+            shape: match b.parts.as_ref().and_then(|p| p.outline()) {
+                Some(outline) => points(outline),
+                None => points(b.shape.vertices()),
+            },
+            parts: b
+                .parts
+                .iter()
+                .flat_map(|p| p.parts())
+                .map(|p| points(p.vertices()))
+                .collect(),
+            outlined: b.parts.as_ref().is_some_and(|p| p.outline().is_some()),
             samples: match &b.motion {
                 Motion::Sampled(tr) => tr
                     .samples()
@@ -143,25 +161,36 @@ fn robots_of(scene: &Scene) -> Vec<RobotView> {
         .collect()
 }
 
+/// The obstacles' polygons in the world: one per convex obstacle, its outline for one given
+/// by an outline, each part for one given by parts.
 fn obstacles_of(scene: &Scene) -> Vec<Vec<[f64; 2]>> {
-    scene
-        .bodies
-        .iter()
-        .filter_map(|b| match b.motion {
-            Motion::Fixed(p) => Some(world(&b.shape, p)),
-            Motion::Sampled(_) => None,
-        })
-        .collect()
+    let mut polygons = Vec::new();
+    for b in &scene.bodies {
+        let Motion::Fixed(p) = b.motion else {
+            continue;
+        };
+        let world = |v: &[Vec2]| -> Vec<[f64; 2]> {
+            let iso = nalgebra::Isometry2::new(p.pos, p.theta);
+            v.iter()
+                .map(|v| {
+                    let w = iso * nalgebra::Point2::from(*v);
+                    [w.x, w.y]
+                })
+                .collect()
+        };
+        match &b.parts {
+            None => polygons.push(world(b.shape.vertices())),
+            Some(parts) => match parts.outline() {
+                Some(outline) => polygons.push(world(outline)),
+                None => polygons.extend(parts.parts().iter().map(|q| world(q.vertices()))),
+            },
+        }
+    }
+    polygons
 }
 
-fn world(shape: &crate::geometry::ConvexPolygon, p: Pose) -> Vec<[f64; 2]> {
-    let placed = Posed::new(shape, p.pos.x, p.pos.y, p.theta);
-    (0..placed.len())
-        .map(|i| {
-            let v = placed.vertex(i);
-            [v.x, v.y]
-        })
-        .collect()
+fn points(vertices: &[Vec2]) -> Vec<[f64; 2]> {
+    vertices.iter().map(|v| [v.x, v.y]).collect()
 }
 
 fn file_title(path: &std::path::Path) -> String {

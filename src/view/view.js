@@ -77,20 +77,39 @@
     info.style.borderColor = robot.colour;
   }
 
+  // A robot is a group: its body (one polygon, or one per part for a body given by parts)
+  // and, for a body given by an outline, the seams of its convex parts, shown on hover.
   const shapes = m.robots.map(function (robot, r) {
-    const g = el("polygon", {
-      id: "robot-" + r,
-      "data-name": robot.name,
-      fill: robot.colour,
-      "fill-opacity": 0.55,
-      stroke: robot.colour,
-      "stroke-width": 1.5,
+    const g = el("g", { id: "robot-" + r, "data-name": robot.name });
+    const body = robot.parts && !robot.outlined ? robot.parts : [robot.shape];
+    const polys = body.map(function (local) {
+      const p = el("polygon", {
+        fill: robot.colour,
+        "fill-opacity": 0.55,
+        stroke: robot.colour,
+        "stroke-width": 1.5,
+      });
+      g.appendChild(p);
+      return { local: local, el: p };
     });
+    const seams = (robot.outlined ? robot.parts : []).map(function (local) {
+      const p = el("polygon", { fill: "none", stroke: "#000", "stroke-opacity": 0.35, "stroke-width": 0.5 });
+      p.setAttribute("visibility", "hidden");
+      g.appendChild(p);
+      return { local: local, el: p };
+    });
+    const seen = function (on) {
+      seams.forEach(function (s) {
+        s.el.setAttribute("visibility", on ? "visible" : "hidden");
+      });
+    };
     g.style.cursor = "pointer";
     g.addEventListener("mouseenter", function () {
+      seen(true);
       showInfo(r);
     });
     g.addEventListener("mouseleave", function () {
+      seen(false);
       showInfo(selected);
     });
     g.addEventListener("click", function () {
@@ -98,7 +117,7 @@
       showInfo(r);
     });
     robotsLayer.appendChild(g);
-    return g;
+    return { polys: polys, seams: seams };
   });
 
   const statusCells = m.robots.map(function (robot) {
@@ -183,14 +202,23 @@
       const p = poseAt(robot.samples, t);
       const c = Math.cos(p[2]);
       const s = Math.sin(p[2]);
-      const pts = robot.shape.map(function (v) {
-        const q = px(p[0] + c * v[0] - s * v[1], p[1] + s * v[0] + c * v[1]);
-        return q[0].toFixed(3) + "," + q[1].toFixed(3);
-      });
-      shapes[r].setAttribute("points", pts.join(" "));
+      const place = function (local) {
+        return local
+          .map(function (v) {
+            const q = px(p[0] + c * v[0] - s * v[1], p[1] + s * v[0] + c * v[1]);
+            return q[0].toFixed(3) + "," + q[1].toFixed(3);
+          })
+          .join(" ");
+      };
       const hit = m.contact && Math.abs(t - m.contact.time) <= CONTACT_WINDOW && m.contact.bodies.indexOf(robot.name) >= 0;
-      shapes[r].setAttribute("stroke", hit ? "#d50000" : robot.colour);
-      shapes[r].setAttribute("stroke-width", hit ? 4 : 1.5);
+      shapes[r].polys.forEach(function (poly) {
+        poly.el.setAttribute("points", place(poly.local));
+        poly.el.setAttribute("stroke", hit ? "#d50000" : robot.colour);
+        poly.el.setAttribute("stroke-width", hit ? 4 : 1.5);
+      });
+      shapes[r].seams.forEach(function (seam) {
+        seam.el.setAttribute("points", place(seam.local));
+      });
       const what = describe(robot, t);
       if (statusCells[r].textContent !== what) statusCells[r].textContent = what;
     });
