@@ -79,7 +79,7 @@ impl Parts {
 
     /// The same body moved by `offset` in its frame (an obstacle's frame is put at its
     /// hull's centroid).
-    pub fn translated(&self, offset: &Vec2) -> Parts {
+    pub(crate) fn translated(&self, offset: &Vec2) -> Parts {
         Parts {
             hull: self.hull.translated(offset),
             parts: self.parts.iter().map(|p| p.translated(offset)).collect(),
@@ -144,6 +144,13 @@ fn convex_hull(points: impl Iterator<Item = Vec2>) -> Result<ConvexPolygon, Poly
 }
 
 /// The axis-aligned box of a polygon's vertices in its own frame: `[x0, y0, x1, y1]`.
+///
+/// ```
+/// use workcell::geometry::{bounding_box, ConvexPolygon};
+/// let p = ConvexPolygon::from_vertices(&[[0.0, 0.0], [2.0, 1.0], [1.0, 3.0]])?;
+/// assert_eq!(bounding_box(&p), [0.0, 0.0, 2.0, 3.0]);
+/// # Ok::<(), workcell::geometry::PolygonError>(())
+/// ```
 pub fn bounding_box(p: &ConvexPolygon) -> [f64; 4] {
     p.vertices().iter().fold(
         [
