@@ -13,7 +13,7 @@
 //! * [`compare`]: the checking methods against each other and the parry peer.
 //!
 //! The feature `cli` (on by default) adds the command line's crates and the SVG pictures
-//! ([`view`], `compare::chart`); with `default-features = false` none of them is
+//! ([`view`], among them `compare`'s chart, [`view::chart`]); with `default-features = false` none of them is
 //! compiled.
 //!
 //! Build scenes with [`geometry::ConvexPolygon::from_vertices`], [`motion::Trajectory::from_poses`],
@@ -69,6 +69,7 @@
 pub mod cell;
 pub mod collision;
 pub mod compare;
+mod error;
 pub mod generate;
 pub mod geometry;
 pub mod motion;

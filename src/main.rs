@@ -41,7 +41,7 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Safety margin δ, replacing the scene's (length units of the scene).
-        #[arg(long, value_parser = positive, allow_negative_numbers = true)]
+        #[arg(long, value_parser = cli::positive, allow_negative_numbers = true)]
         delta: Option<f64>,
         /// How each merged interval is searched: `adaptive` (the paper's bisection with a
         /// motion bound true for any input), `adaptive-paper` (with the paper's eq. 12, from
@@ -51,13 +51,13 @@ enum Command {
         #[arg(long, default_value = "adaptive")]
         method: Method,
         /// Time tolerance of the first contact (time units; default 1e-6 of the horizon).
-        #[arg(long, value_parser = positive, allow_negative_numbers = true)]
+        #[arg(long, value_parser = cli::positive, allow_negative_numbers = true)]
         time_tol: Option<f64>,
         /// Also give each pair's counters (`pair_stats` in the JSON).
         #[arg(long)]
         per_pair: bool,
         /// Work budget of each pair, in evaluations of the distance (default 1000000).
-        #[arg(long, value_parser = at_least_one, allow_negative_numbers = true)]
+        #[arg(long, value_parser = cli::at_least_one, allow_negative_numbers = true)]
         max_work: Option<u64>,
         /// Write a self-contained HTML page that animates the scene, its first contact
         /// highlighted and the certified-free prefix shown on the time slider.
@@ -78,7 +78,7 @@ enum Command {
         seed: u64,
         /// Rounds of sequencing, checking and feedback before giving up (for the search:
         /// along one branch).
-        #[arg(long, default_value_t = 200, value_parser = at_least_one, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = 200, value_parser = cli::at_least_one, allow_negative_numbers = true)]
         max_iterations: u64,
         #[command(flatten)]
         feedback: cli::solve::FeedbackArgs,
@@ -89,7 +89,7 @@ enum Command {
         export_graph: Option<PathBuf>,
         /// Stop searching after this many seconds (whole solve) and keep the best certified
         /// schedule found so far. Without it the result depends only on the cell and the seed.
-        #[arg(long, value_parser = positive, allow_negative_numbers = true)]
+        #[arg(long, value_parser = cli::positive, allow_negative_numbers = true)]
         time_limit: Option<f64>,
         /// Print a plain progress line on stderr every second (stage, best makespan, elapsed
         /// time) instead of the progress bar.
@@ -173,21 +173,6 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
-}
-
-fn positive(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("expected a positive number, got `{s}`")),
-    }
-}
-
-/// A count of at least 1 (clap's own range check would print `1..18446744073709551615`).
-pub(crate) fn at_least_one(s: &str) -> Result<u64, String> {
-    match s.parse::<u64>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err(format!("expected a whole number of at least 1, got `{s}`")),
-    }
 }
 
 /// `workcell generate`: scenes of one kind or all, or cells.

@@ -2,10 +2,8 @@
 //! naming the field as the file would (`robots[0].max_speed`), and no file.
 
 use super::cell_checks::check_geometry;
-use super::cell_file::{
-    allowed_robots, check_duration, check_limits, check_name, owner, Cell, CellObstacle, CellRobot,
-    Task,
-};
+use super::cell_file::{allowed_robots, check_duration, check_limits, check_name, owner};
+use super::model::{Cell, CellObstacle, CellRobot, Task};
 use super::InputError;
 use crate::collision::check_delta;
 use crate::motion::Pose;

@@ -1,9 +1,9 @@
 //! The geometry of a cell read from its file: coordinates f64 resolves at δ, shape clean-ups
 //! that keep the boundary, homes clear of obstacles and of each other, tasks outside obstacles.
 
-use super::precision::check_shape_repairs;
 use super::time_axis::check_time_axis;
 use super::{Cell, CellObstacle, CellRobot, InputError, MAX_COORDINATE_OVER_DELTA};
+use crate::collision::check_shape_repairs;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::motion::Pose;
 

@@ -241,9 +241,9 @@ fn check_name(
 /// it: unknown keys skipped, a key given twice or anything the cursor leaves to serde
 /// (`None`) read again by serde.
 mod fast {
-    use super::super::json_cursor::{once, Cursor};
-    use super::super::reading::Point;
     use super::{RawObstacle, RawRobot, RawSample, RawScene, Samples};
+    use crate::cell::json_cursor::{once, Cursor};
+    use crate::cell::reading::Point;
     use crate::motion::Sample;
 
     pub(super) fn scene(text: &str) -> Option<RawScene> {

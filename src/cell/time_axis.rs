@@ -7,7 +7,7 @@
 //! read: the schedule itself is checked again when it is built (`wcp`).
 
 use super::{CellRobot, InputError, Task};
-use crate::planning::rest_to_rest_time;
+use crate::motion::rest_to_rest_time;
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 

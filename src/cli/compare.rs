@@ -6,9 +6,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use workcell::cell::{check_precision, load_scene, InputError};
 use workcell::compare::{
-    chart, compare, default_contenders, validate_contenders, Comparison, Contender, NamedScene,
+    compare, default_contenders, validate_contenders, Comparison, Contender, NamedScene,
     REFERENCE_TIME_TOL,
 };
+use workcell::view::chart;
 
 /// Compares `contenders` on the scenes in `inputs` (files, or folders whose `*.json` files
 /// are read, cell files `*-cell.json` aside). Exit 0, or 2 on unusable input or a method

@@ -47,7 +47,7 @@ pub struct FeedbackArgs {
     #[arg(long, default_value = "search", value_parser = ["search", "greedy"])]
     feedback: String,
     /// The search's budget: most schedules checked.
-    #[arg(long, default_value_t = 5000, value_parser = crate::at_least_one, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 5000, value_parser = super::at_least_one, allow_negative_numbers = true)]
     search_nodes: u64,
     /// The search's time limit, in seconds (a safety stop; the result is deterministic
     /// when it is not reached).

@@ -4,9 +4,10 @@
 use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
 use super::method::Scratch;
 use super::pair::{PairCheck, SharedLimit};
+use super::precision::check_precision;
 use super::span::PairSettings;
 use super::{Method, Scene, Stats};
-use crate::cell::{check_precision, InputError};
+use crate::error::InputError;
 use crate::geometry::WalkTolerances;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -185,7 +186,7 @@ pub struct PairStats {
 /// checking all pairs; the counters, and so `certified`, only cover the pairs checked (a
 /// pruned pair's distance is proven ≥ δ, grazes included).
 ///
-/// Guarantee (rigorous bound, a scene that passes [`crate::cell::check_precision`] at the δ
+/// Guarantee (rigorous bound, a scene that passes [`super::check_precision`] at the δ
 /// used): when `collision` is false, no pair comes closer than δ at any time of the horizon,
 /// except within [`Stats::grazing`] intervals, each shorter than the time tolerance, where
 /// the distance stays above δ·(1 − grazing_tol) (`certified` is then false). When true, the
@@ -231,7 +232,7 @@ pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
 
 /// [`check`] for a scene and options not validated yet: refuses, as `workcell check` does,
 /// what [`validate`] refuses and scenes that f64 cannot check at their δ
-/// ([`crate::cell::check_precision`]). The errors name the field and no file.
+/// ([`super::check_precision`]). The errors name the field and no file.
 ///
 /// ```
 /// use workcell::collision::{try_check, CheckOptions, Scene};

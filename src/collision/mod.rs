@@ -18,6 +18,7 @@ mod method;
 mod pair;
 #[cfg(feature = "parry-peer")]
 mod peer;
+mod precision;
 mod sampled;
 mod scene;
 mod span;
@@ -32,6 +33,11 @@ pub use check::{
 pub use method::Method;
 #[cfg(feature = "parry-peer")]
 pub use peer::{check_with_parry, PeerReport};
+pub(crate) use precision::check_shape_repairs;
+pub use precision::{
+    check_precision, check_time_resolution, MAX_COORDINATE_OVER_DELTA, MAX_REPAIR_SHIFT_OVER_DELTA,
+    MIN_TIME_TOL_OVER_ULP,
+};
 pub use sampled::MAX_SAMPLED_LOOKS;
 pub(crate) use scene::check_delta;
 pub use scene::{Body, Scene};

@@ -1,6 +1,6 @@
 //! The checker's input: bodies with their shapes and motions.
 
-use crate::cell::InputError;
+use crate::error::InputError;
 use crate::geometry::{ConvexPolygon, Parts};
 use crate::motion::{Motion, Pose, Trajectory};
 use std::collections::HashSet;

@@ -8,9 +8,6 @@
 //! the largest error of the first contact time. With the feature `parry-peer`, parry2d-f64's
 //! nonlinear shape cast runs as the method `parry` and cross-checks the reference.
 
-#[cfg(feature = "cli")]
-pub use crate::view::chart;
-
 use crate::cell::InputError;
 use crate::collision::{check, validate, CheckOptions, CheckReport, Method, Scene};
 use serde::Serialize;

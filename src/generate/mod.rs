@@ -8,6 +8,7 @@ mod cells;
 mod conflict;
 mod parts_scenes;
 mod scenes;
+mod smooth;
 
 pub use cells::{cell_file_name, generate_cell, CellRequest, TASK_CLEARANCE};
 pub use conflict::{conflict_file_name, generate_conflict_cell, ConflictKind};

@@ -2,7 +2,7 @@
 //! fixtures, a bay a robot drives into, combs that interleave, bodies of 10 to 30 parts.
 //! Each is built so that the hull of a body tells a different story from its parts.
 
-use super::scenes::{pick, time_grid, Smooth, R};
+use super::smooth::{pick, time_grid, Smooth, R};
 use crate::collision::Body;
 use crate::geometry::{ConvexPolygon, Outline, Parts, Vec2};
 use crate::motion::{Sample, Trajectory};

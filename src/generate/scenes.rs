@@ -1,6 +1,7 @@
 //! Deterministic random scenes for `workcell generate`: the same kind, seed and index always
 //! give the same [`Scene`] (a ChaCha8 stream per scene, no clock, no hashing).
 
+use super::smooth::{pick, time_grid, Smooth, R};
 use super::{mix, parts_scenes};
 use crate::collision::{Body, Scene};
 use crate::geometry::{ConvexPolygon, Vec2};
@@ -170,13 +171,6 @@ pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene
     }
 }
 
-pub(super) type R = ChaCha8Rng;
-
-/// One of two values, evenly.
-pub(super) fn pick<T: Copy>(rng: &mut R, of: [T; 2]) -> T {
-    of[rng.random_range(0..2usize)]
-}
-
 fn polygon(points: &[[f64; 2]]) -> ConvexPolygon {
     ConvexPolygon::new(points)
         .expect("generated shapes are strictly convex")
@@ -212,73 +206,6 @@ fn rectangle(a: f64, b: f64, phi: f64) -> Vec<[f64; 2]> {
     [[-a, -b], [a, -b], [a, b], [-a, b]]
         .map(|[x, y]| [c * x - s * y, s * x + c * y])
         .to_vec()
-}
-
-/// `n` strictly increasing times from `t0` to `t1`, with steps between 0.3 and 1.7 times
-/// the mean step.
-pub(super) fn time_grid(rng: &mut R, n: usize, t0: f64, t1: f64) -> Vec<f64> {
-    let steps: Vec<f64> = (1..n).map(|_| rng.random_range(0.3..1.7)).collect();
-    let total: f64 = steps.iter().sum();
-    let mut t = vec![t0];
-    let mut acc = 0.0;
-    for s in &steps[..n - 2] {
-        acc += s;
-        t.push(t0 + (t1 - t0) * acc / total);
-    }
-    t.push(t1);
-    t
-}
-
-/// A smooth motion in (x, y, θ): for each coordinate a base value, a drift rate and a sum of
-/// sinusoids `(amplitude, angular frequency, phase)`.
-pub(super) struct Smooth {
-    coords: [(f64, f64, Vec<[f64; 3]>); 3],
-}
-
-impl Smooth {
-    /// Wanders around `centre` by up to about `reach` (three sinusoids each in x and y) and
-    /// turns (a drift and two sinusoids in θ).
-    pub(super) fn random(rng: &mut R, centre: [f64; 2], reach: f64) -> Smooth {
-        let mut waves = |n: usize, amp: f64| -> Vec<[f64; 3]> {
-            (0..n)
-                .map(|_| {
-                    [
-                        amp * rng.random_range(0.2..1.0),
-                        rng.random_range(0.2..1.5),
-                        rng.random_range(0.0..TAU),
-                    ]
-                })
-                .collect()
-        };
-        let (wx, wy, wt) = (waves(3, reach / 3.0), waves(3, reach / 3.0), waves(2, 1.0));
-        let theta0 = rng.random_range(-PI..PI);
-        let drift = rng.random_range(-0.5..0.5);
-        Smooth {
-            coords: [
-                (centre[0], 0.0, wx),
-                (centre[1], 0.0, wy),
-                (theta0, drift, wt),
-            ],
-        }
-    }
-
-    /// The sample at time `t`, with the exact derivatives as velocities.
-    pub(super) fn sample(&self, t: f64) -> Sample {
-        let [x, y, th] = self.coords.each_ref().map(|(base, drift, waves)| {
-            waves
-                .iter()
-                .fold((base + drift * t, *drift), |(v, d), [a, w, p]| {
-                    (v + a * (w * t + p).sin(), d + a * w * (w * t + p).cos())
-                })
-        });
-        Sample {
-            t,
-            pos: Vec2::new(x.0, y.0),
-            theta: th.0,
-            vel: Vec2::new(x.1, y.1),
-            omega: th.1,
-        }
-    }
 }
 
 fn robot(name: String, shape: &[[f64; 2]], samples: Vec<Sample>) -> Body {

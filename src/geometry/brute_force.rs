@@ -1,8 +1,7 @@
 //! Exact distance by exhaustion: the walk's fallback and the tests' oracle.
 
-use super::lin_canny::Distance;
 use super::segment::project_on_segment;
-use super::{Feature, FeaturePair, Posed, Vec2};
+use super::{Distance, Feature, FeaturePair, Posed, Vec2};
 
 /// Exact distance between two posed convex polygons in O(n·m).
 ///

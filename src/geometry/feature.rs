@@ -1,4 +1,7 @@
-//! Features of a convex polygon: its vertices and its edges.
+//! Features of a convex polygon (its vertices and its edges), and what a distance query
+//! between two polygons answers: the distance, the closest points and features.
+
+use super::Vec2;
 
 /// A feature of a convex polygon with `n` vertices.
 ///
@@ -28,4 +31,21 @@ impl FeaturePair {
             b: self.a,
         }
     }
+}
+
+/// Result of a distance query between polygons A and B.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Distance {
+    /// Euclidean distance; 0 when the polygons touch or overlap.
+    pub distance: f64,
+    /// Closest point on A (world frame); on overlap, a point near the contact.
+    pub point_a: Vec2,
+    /// Closest point on B (world frame); on overlap, a point near the contact.
+    pub point_b: Vec2,
+    /// The closest features, for the next warm start.
+    pub features: FeaturePair,
+    /// Feature pairs visited by the walk.
+    pub steps: u32,
+    /// Whether the cycling guard fired and the exact fallback gave the answer.
+    pub fell_back: bool,
 }

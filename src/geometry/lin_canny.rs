@@ -10,7 +10,7 @@
 use super::segment::{
     closest_ends, crossing, nearly_parallel, project_on_segment, segment_segment,
 };
-use super::{brute_force_distance, cross, Feature, FeaturePair, Posed, Vec2};
+use super::{brute_force_distance, cross, Distance, Feature, FeaturePair, Posed, Vec2};
 
 /// Tolerances and limits of the walk.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,23 +36,6 @@ impl Default for WalkTolerances {
             max_steps_per_vertex: 2,
         }
     }
-}
-
-/// Result of a distance query between polygons A and B.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Distance {
-    /// Euclidean distance; 0 when the polygons touch or overlap.
-    pub distance: f64,
-    /// Closest point on A (world frame); on overlap, a point near the contact.
-    pub point_a: Vec2,
-    /// Closest point on B (world frame); on overlap, a point near the contact.
-    pub point_b: Vec2,
-    /// The closest features, for the next warm start.
-    pub features: FeaturePair,
-    /// Feature pairs visited by the walk.
-    pub steps: u32,
-    /// Whether the cycling guard fired and the exact fallback gave the answer.
-    pub fell_back: bool,
 }
 
 /// What testing a point of the other polygon against a feature's Voronoi region decides.

@@ -18,8 +18,8 @@ mod posed;
 mod segment;
 
 pub use brute_force::brute_force_distance;
-pub use feature::{Feature, FeaturePair};
-pub use lin_canny::{closest_features, Distance, WalkTolerances};
+pub use feature::{Distance, Feature, FeaturePair};
+pub use lin_canny::{closest_features, WalkTolerances};
 pub use outline::{Outline, OutlineError};
 pub use parts::{
     bounding_box, parts_distance, Parts, PartsCache, PartsDistance, PartsSide, PartsTolerance,

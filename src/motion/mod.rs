@@ -7,7 +7,10 @@
 //!   the paper's velocity-based eq. (12).
 
 mod bounds;
+mod profile;
 mod trajectory;
 
 pub use bounds::{lambda, BoundKind};
+pub use profile::rest_to_rest_time;
+pub(crate) use profile::Trapezoid;
 pub use trajectory::{Motion, Pose, Sample, Trajectory, TrajectoryError};

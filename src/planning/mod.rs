@@ -80,14 +80,13 @@ mod corners;
 mod grown;
 mod minkowski;
 mod plan;
-mod profile;
 mod sampling;
 mod timed;
 mod turn_apart;
 mod visibility;
 
+pub use crate::motion::rest_to_rest_time;
 pub(crate) use minkowski::convex_hull;
-pub use profile::rest_to_rest_time;
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;
 

@@ -3,11 +3,11 @@
 use super::corners::cut_corners;
 use super::grown::Grown;
 use super::minkowski::{disc, minkowski_sum, swept_shape};
-use super::profile::rest_to_rest_time;
 use super::timed::{time_primitive, Primitive};
 use super::visibility::shortest_path;
 use super::{angle_between, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use crate::geometry::{ConvexPolygon, Vec2};
+use crate::motion::rest_to_rest_time;
 use crate::motion::Pose;
 
 /// Boundary tolerance relative to the largest coordinate: thousands of times the rounding

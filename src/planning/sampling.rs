@@ -1,7 +1,7 @@
 //! From the profiles of a move to its time samples.
 
-use super::profile::Trapezoid;
 use crate::geometry::Vec2;
+use crate::motion::Trapezoid;
 use crate::motion::{Pose, Sample};
 
 /// Times closer than this fraction of the move's duration are one sample.

@@ -6,10 +6,10 @@
 //! whole primitive), so timing the same primitives again gives the same samples, bit for
 //! bit: `evaluate` replays a solve's changed moves from their primitives alone.
 
-use super::profile::{rest_to_rest_time, Trapezoid};
 use super::sampling::Timing;
 use super::{PlannedMove, RobotLimits};
 use crate::geometry::Vec2;
+use crate::motion::{rest_to_rest_time, Trapezoid};
 use crate::motion::{Pose, Sample};
 
 /// One rest-to-rest piece of a move: G along `path`, stopping at every waypoint, while the

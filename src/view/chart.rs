@@ -22,7 +22,8 @@ const LABEL_CHAR_WIDTH: f64 = 7.0;
 /// The chart as an SVG document.
 ///
 /// ```
-/// use workcell::compare::{chart, compare, NamedScene};
+/// use workcell::compare::{compare, NamedScene};
+/// use workcell::view::chart;
 /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/tunnelling.json");
 /// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
 /// let scenes = [NamedScene { name: "tunnelling.json".into(), scene }];

@@ -1,8 +1,9 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
-use super::feedback::{SolveOptions, StageTimes};
 use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use super::moves::MoveStore;
+use super::options::SolveOptions;
+use super::prepare::StageTimes;
 use super::schedule::{Activity, BuildError, Collision, Delay, Schedule};
 use super::time_axis::{culprit, first_infinite_time};
 use crate::cell::{number, Cell, InputError, PieceSpec, Sequences};

@@ -19,6 +19,8 @@ mod feedback;
 mod graph;
 pub mod legs;
 mod moves;
+mod options;
+mod prepare;
 
 pub mod remedy_json;
 pub mod report;
@@ -28,17 +30,15 @@ pub mod sequencer;
 mod time_axis;
 
 pub use evaluate::{evaluate, Evaluated};
-pub use feedback::{
-    describe, prepare, sequencer_error, solve, uncertified, Feedback, Iteration, Planning,
-    Prepared, Progress, Remedies, Remedy, SearchOptions, SolveOptions, Solved, StageTimes,
-    AUTO_ALL_MAX_MOVES,
-};
+pub use feedback::{describe, solve, uncertified, Iteration, Remedy, Solved};
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,
 };
 pub use moves::{
     bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore,
 };
+pub use options::{Feedback, Planning, Remedies, SearchOptions, SolveOptions, AUTO_ALL_MAX_MOVES};
+pub use prepare::{prepare, sequencer_error, Prepared, Progress, StageTimes};
 
 pub use schedule::{
     route_nodes, Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,

@@ -1,8 +1,9 @@
 //! What `solve` and `evaluate` print: the contract's JSON (section 4, with optional fields
 //! added) and the human summary.
 
-use super::feedback::{describe, Iteration, StageTimes};
+use super::feedback::{describe, Iteration};
 use super::moves::node_name;
+use super::prepare::StageTimes;
 use super::remedy_json::{change_json, remedy_name, remedy_text, ChangeJson, LegJson};
 use super::schedule::{Activity, Collision, Delay, Schedule};
 use crate::cell::Cell;

@@ -17,7 +17,8 @@
 //! rounds plan (the store plans each move once for everyone): its result never depends on
 //! what other calls, in other threads, planned before it.
 
-use super::feedback::{sequencer_error, Prepared, Progress, SolveOptions};
+use super::options::SolveOptions;
+use super::prepare::{sequencer_error, Prepared, Progress};
 use super::sequencer::{self, steps, ExactArcs, Instance, Solution, Step};
 use crate::cell::{Cell, InputError};
 use std::sync::Arc;

@@ -27,6 +27,7 @@ mod compare;
 mod corpus;
 mod feedback;
 mod generate;
+mod layers;
 mod lazy;
 mod library_api;
 mod library_inputs;

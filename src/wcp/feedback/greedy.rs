@@ -3,12 +3,14 @@
 //! node, and the choice is never revisited. Kept as `--feedback greedy`, to compare the
 //! search against.
 
-use super::describe;
-use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved, StageTimes};
+use super::outcome::describe;
+use super::outcome::{build, Iteration, Remedy, Solved};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckReport, Verdict};
 use crate::wcp::legs::Legs;
 use crate::wcp::moves::MoveStore;
+use crate::wcp::options::SolveOptions;
+use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Activity, Collision, Delay, Schedule, Segment};
 use crate::wcp::sequence::sequence_with;
 use crate::wcp::sequencer::{Conflict, Solution};

@@ -27,11 +27,13 @@
 //! that reaches it may differ from run to run). Without any certified schedule, the search
 //! reports the schedule whose first collision came latest, and that collision.
 
-use super::remedies::{candidates, Ctx, Remedies, View};
-use super::{build, Iteration, Prepared, Progress, Remedy, SolveOptions, Solved};
+use super::outcome::{build, Iteration, Remedy, Solved};
+use super::remedies::{candidates, Ctx, View};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckReport};
 use crate::wcp::legs::{default_legs, HoldReason, Legs, Piece};
+use crate::wcp::options::SolveOptions;
+use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
 use crate::wcp::sequence::sequence_with;
 use crate::wcp::sequencer::{self, Conflict};
@@ -40,28 +42,7 @@ use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, HashSet};
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
-
-/// Budgets and remedies of the search.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SearchOptions {
-    /// Most schedules checked.
-    pub max_nodes: usize,
-    /// Most wall time spent searching (after the collision-blind sequencing).
-    pub time_limit: Duration,
-    /// The remedies the search may use.
-    pub remedies: Remedies,
-}
-
-impl Default for SearchOptions {
-    fn default() -> Self {
-        SearchOptions {
-            max_nodes: 5000,
-            time_limit: Duration::from_secs(60),
-            remedies: Remedies::ALL,
-        }
-    }
-}
+use std::time::Instant;
 
 /// One schedule of the search.
 struct Node {
@@ -145,7 +126,7 @@ struct Search<'a> {
     nodes: Vec<Node>,
     queue: BinaryHeap<Reverse<Key>>,
     seen: HashSet<u128>,
-    times: super::StageTimes,
+    times: StageTimes,
     checked: usize,
     /// The collision-blind plan's makespan: what a re-sequencing waits in the queue at.
     blind_makespan: f64,

@@ -1,7 +1,7 @@
 //! Detours: the leg re-planned with the other robot as an obstacle, its pose if it stands
 //! or the region it sweeps over the conflict window if it moves.
 
-use super::{child, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
+use super::context::{child, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
 use crate::geometry::{ConvexPolygon, Posed, Vec2};
 use crate::motion::Pose;
 use crate::planning::convex_hull;

@@ -1,7 +1,7 @@
 //! Waiting along the way: a pause at a point of the path short of the contact, or the
 //! whole leg run slower (time scaling keeps every limit).
 
-use super::{
+use super::context::{
     child, horizons, least_clearing, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View,
 };
 use crate::geometry::Vec2;

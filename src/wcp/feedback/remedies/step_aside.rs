@@ -1,7 +1,9 @@
 //! Stepping aside: a robot in the other's way goes to a free parking pose nearby (found
 //! on rings about where it stands), waits there and goes on.
 
-use super::{child, horizons, least_clearing, leg_nodes, leg_window, Child, Ctx, Side, View};
+use super::context::{
+    child, horizons, least_clearing, leg_nodes, leg_window, Child, Ctx, Side, View,
+};
 use crate::collision::Body;
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::{Motion, Pose};

@@ -1,7 +1,7 @@
 //! Refusing scenes that f64 cannot check at their δ and time tolerance.
 
-use super::InputError;
-use crate::collision::{Body, Scene};
+use super::{Body, Scene};
+use crate::error::InputError;
 use crate::motion::Motion;
 use std::path::Path;
 

@@ -1,0 +1,238 @@
+//! What a solve gives back: the remedies applied, the rounds, the final schedule and its
+//! report ([`Solved`]); and the words for a collision or an uncertified schedule.
+
+use crate::cell::{Cell, InputError};
+use crate::collision::{CheckReport, Verdict};
+use crate::geometry::Vec2;
+use crate::motion::Pose;
+use crate::wcp::legs::Legs;
+use crate::wcp::moves::MoveStore;
+use crate::wcp::prepare::StageTimes;
+use crate::wcp::schedule::{Activity, BuildError, Collision, Delay, Schedule};
+use crate::wcp::time_axis::culprit;
+
+/// How one round's collision was removed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Remedy {
+    /// The sequencer re-planned with the colliding pair of steps forbidden.
+    Resequence,
+    /// A robot waits at a node before one of its moves.
+    Delay(Delay),
+    /// A robot stops at a point of a move's path and waits there.
+    Pause {
+        /// The robot.
+        robot: usize,
+        /// The leg (move of its route) that pauses.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// Where it stops.
+        at: Vec2,
+        /// How long it waits there.
+        duration: f64,
+    },
+    /// A robot makes a move slower.
+    Slow {
+        /// The robot.
+        robot: usize,
+        /// The leg that is slowed down.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// How many times slower than planned.
+        factor: f64,
+    },
+    /// A robot makes a move by another way, around another robot.
+    Detour {
+        /// The robot.
+        robot: usize,
+        /// The leg re-planned.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// The robot gone around.
+        around: usize,
+        /// The new path of G.
+        path: Vec<Vec2>,
+    },
+    /// A robot steps aside to a parking pose, waits there and goes on.
+    StepAside {
+        /// The robot.
+        robot: usize,
+        /// The leg that goes by way of the parking pose.
+        leg: usize,
+        /// The leg's nodes.
+        nodes: (usize, usize),
+        /// The parking pose.
+        park: Pose,
+        /// How long it waits there.
+        duration: f64,
+    },
+}
+
+/// One round of the loop.
+#[derive(Clone, Debug)]
+pub struct Iteration {
+    /// Makespan of the schedule checked in this round.
+    pub makespan: f64,
+    /// Its first collision, if any.
+    pub collision: Option<Collision>,
+    /// What was done about it (`None` in the last round).
+    pub remedy: Option<Remedy>,
+}
+
+/// A solve's result.
+#[derive(Clone, Debug)]
+pub struct Solved {
+    /// Each robot's tasks in order.
+    pub routes: Vec<Vec<usize>>,
+    /// Every robot's legs as the loop changed them (waits, pauses, detours, parking).
+    pub legs: Legs,
+    /// The final schedule.
+    pub schedule: Schedule,
+    /// The checker's report on the final schedule.
+    pub report: CheckReport,
+    /// True when the final schedule is certified collision-free.
+    pub collision_free: bool,
+    /// Every round, in order; the last one checked the final schedule.
+    pub iterations: Vec<Iteration>,
+    /// The collision-blind best sequences (the first round's).
+    pub blind_routes: Vec<Vec<usize>>,
+    /// Makespan of the collision-blind best schedule.
+    pub blind_makespan: f64,
+    /// Whether the sequencer proved that one optimal.
+    pub blind_optimal: bool,
+    /// Why the loop stopped without a collision-free schedule.
+    pub failure: Option<String>,
+    /// Schedules checked: the rounds for the greedy loop, the search nodes for the search.
+    pub nodes: usize,
+    /// Wall time per stage.
+    pub times: StageTimes,
+}
+
+impl Solved {
+    /// The waits at nodes of the final schedule.
+    ///
+    /// ```
+    /// use workcell::wcp::{prepare, solve, Feedback, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// // The greedy loop ends by making R2 wait at home (README, "feedback cell").
+    /// let opts = SolveOptions { feedback: Feedback::Greedy, ..SolveOptions::default() };
+    /// let solved = solve(&cell, &prepare(&cell, &opts, &())?, &opts, &())?;
+    /// let delays = solved.delays();
+    /// assert_eq!((delays.len(), delays[0].robot, delays[0].before_move), (1, 1, 0));
+    /// assert!(solved.collision_free && delays[0].duration > 0.0);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn delays(&self) -> Vec<Delay> {
+        Delay::of_legs(&self.routes, &self.legs)
+    }
+}
+
+/// The schedule of `routes` with `legs`; a failure is an error in the cell's terms.
+pub(super) fn build(
+    cell: &Cell,
+    routes: &[Vec<usize>],
+    legs: &Legs,
+    cache: &MoveStore,
+) -> Result<Schedule, InputError> {
+    Schedule::build(cell, routes, legs, cache)
+        .map_err(|e| build_error(cell, routes, legs, cache, e))
+}
+
+fn build_error(
+    cell: &Cell,
+    routes: &[Vec<usize>],
+    legs: &Legs,
+    cache: &MoveStore,
+    e: BuildError,
+) -> InputError {
+    let robot = &cell.robots[e.robot()].name;
+    match e {
+        // The table certified every move the sequencer may choose: a failure here means
+        // the planner is not deterministic, a defect to report rather than hide.
+        BuildError::Move { .. } => cell.error(
+            Some(robot),
+            "",
+            format!(
+                "internal error: a move certified before fails now: {}",
+                e.reason(cell)
+            ),
+        ),
+        // Blame the task whose duration stretched the axis, as `evaluate` does, and the
+        // robot's limits otherwise (its waits are the solver's, never the user's).
+        BuildError::Precision { robot: r, time } => {
+            let delays = Delay::of_legs(routes, legs);
+            let blamed = culprit(cell, r, &routes[r], &delays, cache, time).map(|m| m.blamed);
+            match blamed.map(|b| b.activity) {
+                Some(Activity::Work(k)) => cell.error(
+                    Some(&cell.tasks[k].name),
+                    format!("tasks[{k}].duration"),
+                    format!(
+                        "this duration of {:e} stretches the time axis: {}",
+                        cell.tasks[k].duration,
+                        e.reason(cell)
+                    ),
+                ),
+                _ => cell.error(Some(robot), format!("robots[{r}]"), e.reason(cell)),
+            }
+        }
+        // Remedies are made to start where the robot is: a jump is a defect of ours.
+        BuildError::Discontinuous { .. } => cell.error(
+            Some(robot),
+            "",
+            format!("internal error: {}", e.reason(cell)),
+        ),
+    }
+}
+
+/// Why the checker did not certify a schedule in which it found no collision: its work
+/// budget ran out on a pair, or two bodies graze δ too closely to prove either way.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::wcp::uncertified;
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/near-miss.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// // One evaluation per pair is not enough to prove the near miss free.
+/// let report = check(&scene, &CheckOptions { max_work_per_pair: 1, ..CheckOptions::default() });
+/// assert!(uncertified(&report).starts_with("the checker spent its work budget"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn uncertified(report: &CheckReport) -> String {
+    match report.verdict() {
+        Verdict::Unresolved { budget: b } => format!(
+            "the checker spent its work budget ({} evaluations) on {} and {} after t = {:.6} \
+             without a proof or a witness",
+            b.work, b.bodies[0], b.bodies[1], b.time
+        ),
+        _ => "the checker cannot certify the schedule: two bodies graze delta".to_owned(),
+    }
+}
+
+/// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{describe, legs::default_legs, MoveStore, Schedule};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let schedule = Schedule::build(&cell, &[vec![1, 0, 2], vec![3]], &default_legs(2), &store).unwrap();
+/// let report = check(&schedule.scene(&cell), &CheckOptions::default());
+/// let line = describe(&cell, &schedule.collision(&cell, &report).expect("a collision"));
+/// assert!(line.starts_with("R1 (") && line.contains(") and R2 (") && line.contains(" at t = "), "{line}");
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn describe(cell: &Cell, c: &Collision) -> String {
+    let a = format!(
+        "{} ({})",
+        c.bodies[0],
+        c.segments.0.activity.describe(cell, c.robots.0)
+    );
+    let b = match (c.robots.1, c.segments.1) {
+        (Some(b), Some(s)) => format!("{} ({})", c.bodies[1], s.activity.describe(cell, b)),
+        _ => format!("obstacle {}", c.bodies[1]),
+    };
+    format!("{a} and {b} at t = {:.6}", c.time)
+}

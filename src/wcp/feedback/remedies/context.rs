@@ -1,0 +1,271 @@
+//! What every remedy works with: the cell, the store of moves and the settings ([`Ctx`]),
+//! the schedule being changed ([`View`]), which robot yields to which ([`Side`]), and the
+//! helpers that find a leg's window, its nodes and pieces, and make the changed schedule.
+
+use crate::cell::Cell;
+use crate::geometry::ConvexPolygon;
+use crate::motion::Pose;
+use crate::planning::{plan_move, time_primitives, PlannedMove, Primitive, RobotLimits};
+use crate::wcp::feedback::clearing::{clears, least};
+use crate::wcp::feedback::Remedy;
+use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
+use crate::wcp::moves::certify;
+use crate::wcp::moves::MoveStore;
+use crate::wcp::options::SolveOptions;
+use crate::wcp::schedule::{route_nodes, Activity, RobotSchedule, Segment};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+/// What the remedies read: the cell, the moves, the options, and plans made so far.
+pub(crate) struct Ctx<'a> {
+    pub cell: &'a Cell,
+    pub moves: &'a MoveStore,
+    pub opts: &'a SolveOptions,
+    fixtures: Vec<ConvexPolygon>,
+    /// Motions planned for remedies, by robot, end poses and extra obstacles: the same
+    /// detour or way to a parking pose is planned once for the whole search.
+    plans: Mutex<HashMap<Vec<u64>, Option<Arc<PlannedMove>>>>,
+}
+
+/// The schedule a remedy changes: routes, legs and every robot's timed plan.
+pub(crate) struct View<'a> {
+    pub routes: &'a [Vec<usize>],
+    pub legs: &'a Legs,
+    pub robots: &'a [Arc<RobotSchedule>],
+}
+
+/// A changed schedule: one robot's legs and timed plan replaced.
+pub(crate) struct Child {
+    pub legs: Legs,
+    pub robot: usize,
+    pub schedule: Arc<RobotSchedule>,
+    pub remedy: Remedy,
+}
+
+impl<'a> Ctx<'a> {
+    pub fn new(cell: &'a Cell, moves: &'a MoveStore, opts: &'a SolveOptions) -> Self {
+        Ctx {
+            cell,
+            moves,
+            opts,
+            fixtures: cell.obstacles.iter().map(|o| o.shape.clone()).collect(),
+            plans: Mutex::new(HashMap::new()),
+        }
+    }
+
+    pub(super) fn limits(&self, r: usize) -> RobotLimits {
+        let robot = &self.cell.robots[r];
+        RobotLimits {
+            max_speed: robot.max_speed,
+            max_accel: robot.max_accel,
+            max_turn_rate: robot.max_turn_rate,
+        }
+    }
+
+    /// Times primitives for robot `r` as the planner would.
+    pub(super) fn timed(&self, r: usize, primitives: &[Primitive]) -> Arc<PlannedMove> {
+        let radius = self.cell.robots[r].shape.radius();
+        let per_phase = self.moves.planner().samples_per_phase;
+        Arc::new(time_primitives(
+            radius,
+            &self.limits(r),
+            primitives,
+            per_phase,
+        ))
+    }
+
+    /// Robot `r`'s fastest move from `from` to `to` around the fixtures and `extra`,
+    /// certified clear of the fixtures; `None` if there is none.
+    pub(super) fn plan(
+        &self,
+        r: usize,
+        from: Pose,
+        to: Pose,
+        extra: &[ConvexPolygon],
+    ) -> Option<Arc<PlannedMove>> {
+        let mut key = vec![r as u64];
+        for p in [from, to] {
+            key.extend([p.pos.x, p.pos.y, p.theta].map(f64::to_bits));
+        }
+        for o in extra {
+            key.push(o.len() as u64);
+            key.extend(
+                o.vertices()
+                    .iter()
+                    .flat_map(|v| [v.x.to_bits(), v.y.to_bits()]),
+            );
+        }
+        if let Some(known) = self.lock().get(&key) {
+            return known.clone();
+        }
+        let robot = &self.cell.robots[r];
+        let mut obstacles = self.fixtures.clone();
+        obstacles.extend_from_slice(extra);
+        let planner = self.moves.planner();
+        let planned = plan_move(
+            &robot.shape,
+            &self.limits(r),
+            &obstacles,
+            self.cell.delta,
+            from,
+            to,
+            planner,
+        )
+        .ok()
+        .filter(|m| certify(self.cell, r, &m.samples, self.moves.obstacles()).is_ok())
+        // Timed again from its primitives, as `evaluate` will time it.
+        .map(|m| self.timed(r, &m.primitives));
+        self.lock().entry(key).or_insert(planned).clone()
+    }
+
+    pub(super) fn lock(
+        &self,
+    ) -> std::sync::MutexGuard<'_, HashMap<Vec<u64>, Option<Arc<PlannedMove>>>> {
+        self.plans.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Robot `x`'s schedule with leg `m` replaced; `None` if it cannot be timed.
+    pub(super) fn rebuild(
+        &self,
+        view: &View,
+        x: usize,
+        m: usize,
+        new: &Leg,
+    ) -> Option<RobotSchedule> {
+        let mut legs: Vec<Leg> = (*view.legs[x]).clone();
+        if legs.len() <= m {
+            legs.resize(m + 1, Leg::DEFAULT);
+        }
+        legs[m] = new.clone();
+        RobotSchedule::build(self.cell, x, &view.routes[x], &legs, self.moves).ok()
+    }
+}
+
+/// One way round: robot `x` yields to robot `y`; what each was doing at the contact, and
+/// when it was.
+pub(super) struct Side {
+    pub(super) x: usize,
+    pub(super) y: usize,
+    pub(super) sx: Segment,
+    pub(super) sy: Segment,
+    pub(super) t: f64,
+}
+
+impl Side {
+    /// The end of the window over which a change of leg `m` of `x` must clear `y`, given
+    /// the changed schedule `s`: the end of the leg (its task included). When nothing comes
+    /// after that leg (the robot is then home for good), no earlier than the end of what `y`
+    /// was doing at the contact (for a robot itself home for good, the contact's time): a
+    /// change that only brings the robot home sooner, still in `y`'s way, clears nothing.
+    /// Later legs are the next rounds' business.
+    pub(super) fn window_end(&self, s: &RobotSchedule, m: usize) -> f64 {
+        let leg_end = leg_window(s, m).1;
+        let last = !s.segments.iter().any(|g| g.leg.is_some_and(|l| l > m));
+        if !last {
+            return leg_end;
+        }
+        let theirs = if self.sy.end.is_finite() {
+            self.sy.end
+        } else {
+            self.t
+        };
+        leg_end.max(theirs)
+    }
+}
+
+/// Start of leg `m` and end of what it leads to (its task included).
+pub(super) fn leg_window(s: &RobotSchedule, m: usize) -> (f64, f64) {
+    let of_leg = s.segments.iter().filter(|g| g.leg == Some(m));
+    of_leg.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
+        (lo.min(g.start), hi.max(g.end))
+    })
+}
+
+/// Waits long enough to try, from `t0`: until `y` has left the place of its segment `sy`,
+/// then until it is home for good. Finite and positive only.
+pub(super) fn horizons(view: &View, y: usize, sy: &Segment, t0: f64) -> Vec<f64> {
+    let ys = &view.robots[y];
+    let gone = match sy.activity {
+        Activity::Move { .. } => sy.end,
+        Activity::Done => f64::INFINITY,
+        // Standing: until the motion that takes it away ends.
+        _ => ys
+            .segments
+            .iter()
+            .skip_while(|g| g.start < sy.end)
+            .find(|g| matches!(g.activity, Activity::Move { .. }))
+            .map_or(f64::INFINITY, |g| g.end),
+    };
+    let mut out: Vec<f64> = [gone - t0, ys.end - t0]
+        .into_iter()
+        .filter(|d| d.is_finite() && *d > 0.0)
+        .collect();
+    out.dedup();
+    out
+}
+
+/// The least value in `(0, D]`, for the first horizon D that works, for which the leg
+/// `make(value)` of robot `x` clears `y` from `t0` (the leg's start) to the leg's end.
+pub(super) fn least_clearing(
+    ctx: &Ctx,
+    view: &View,
+    side: &Side,
+    (m, t0): (usize, f64),
+    bounds: &[f64],
+    make: impl Fn(f64) -> Option<Leg>,
+) -> Option<(f64, Leg, RobotSchedule)> {
+    let opts = &ctx.opts.check;
+    bounds.iter().find_map(|&hi| {
+        let (value, (new, schedule)) = least(0.0, hi, |v| {
+            let new = make(v)?;
+            let s = ctx.rebuild(view, side.x, m, &new)?;
+            let t1 = side.window_end(&s, m);
+            let ok = clears(
+                ctx.cell,
+                (side.x, &s),
+                (side.y, &view.robots[side.y]),
+                (t0, t1),
+                opts,
+            );
+            ok.then_some((new, s))
+        })?;
+        Some((value, new, schedule))
+    })
+}
+
+pub(super) fn child(
+    view: &View,
+    x: usize,
+    m: usize,
+    new: Leg,
+    s: RobotSchedule,
+    remedy: Remedy,
+) -> Child {
+    Child {
+        legs: with_leg(view.legs, x, m, new),
+        robot: x,
+        schedule: Arc::new(s),
+        remedy,
+    }
+}
+
+/// The two nodes of leg `m` of robot `x`.
+pub(super) fn leg_nodes(view: &View, x: usize, m: usize) -> (usize, usize) {
+    let nodes = route_nodes(&view.routes[x]);
+    (nodes[m], nodes[(m + 1).min(nodes.len() - 1)])
+}
+
+/// The leg's motion as pieces: its own, or the planned move timed from its primitives.
+pub(super) fn pieces_of(ctx: &Ctx, view: &View, x: usize, m: usize) -> Option<Vec<Piece>> {
+    match &leg(view.legs, x, m).pieces {
+        Some(p) => Some(p.to_vec()),
+        None => {
+            let (from, to) = leg_nodes(view, x, m);
+            let planned = ctx.moves.get(x, from, to).ok()?;
+            Some(vec![Piece::Go {
+                motion: ctx.timed(x, &planned.primitives),
+                scale: 1.0,
+            }])
+        }
+    }
+}

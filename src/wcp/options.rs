@@ -1,0 +1,179 @@
+//! The settings of a solve: how collisions are fed back, the search's budgets and
+//! remedies, which moves are planned up front, and the settings of every stage below.
+
+use crate::collision::CheckOptions;
+use crate::planning::PlannerOptions;
+use crate::wcp::sequencer::SequencerOptions;
+use std::time::Duration;
+
+/// How collisions are fed back.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Feedback {
+    /// Best-first search over remedies (`search.rs`).
+    #[default]
+    Search,
+    /// Each round, the better of re-sequencing and one wait at a node (`greedy.rs`).
+    Greedy,
+}
+
+/// Settings of a solve.
+#[derive(Clone, Debug)]
+pub struct SolveOptions {
+    /// Rounds of sequencing, checking and feedback before giving up (for the search: along
+    /// one branch).
+    pub max_iterations: usize,
+    /// How collisions are fed back.
+    pub feedback: Feedback,
+    /// The search's budgets and remedies (for [`Feedback::Search`]).
+    pub search: SearchOptions,
+    /// The sequencer's settings, its seed among them.
+    pub sequencer: SequencerOptions,
+    /// The planner's settings.
+    pub planner: PlannerOptions,
+    /// The checker's settings for the schedules.
+    pub check: CheckOptions,
+    /// Wall time for the whole solve, from [`prepare`] on: the sequencer then returns the
+    /// best certified plan found so far, and the search its best certified schedule. `None`:
+    /// no limit, and the result depends only on the input and the seed.
+    pub time_limit: Option<Duration>,
+    /// Which moves are planned before sequencing.
+    pub planning: Planning,
+}
+/// Which moves [`prepare`] plans and certifies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Planning {
+    /// [`Planning::All`] for cells of at most [`AUTO_ALL_MAX_MOVES`] moves, else
+    /// [`Planning::Lazy`].
+    #[default]
+    Auto,
+    /// For each task, the move from the home of its nearest allowed robot that can reach it;
+    /// the sequencer works on lower bounds of the others and plans those its plans use.
+    Lazy,
+    /// Every move of every robot between every two of its nodes (robots × nodes² / 2).
+    All,
+}
+
+/// Cells with at most this many moves (robots × unordered pairs of their nodes) are planned
+/// whole under [`Planning::Auto`]: a second or two of planning, and the sequencer then
+/// searches on exact times from the start.
+pub const AUTO_ALL_MAX_MOVES: usize = 100_000;
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            max_iterations: 200,
+            feedback: Feedback::default(),
+            search: SearchOptions::default(),
+            sequencer: SequencerOptions::default(),
+            planner: PlannerOptions::default(),
+            check: CheckOptions::default(),
+            time_limit: None,
+            planning: Planning::Auto,
+        }
+    }
+}
+
+/// Budgets and remedies of the search.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SearchOptions {
+    /// Most schedules checked.
+    pub max_nodes: usize,
+    /// Most wall time spent searching (after the collision-blind sequencing).
+    pub time_limit: Duration,
+    /// The remedies the search may use.
+    pub remedies: Remedies,
+}
+
+impl Default for SearchOptions {
+    fn default() -> Self {
+        SearchOptions {
+            max_nodes: 5000,
+            time_limit: Duration::from_secs(60),
+            remedies: Remedies::ALL,
+        }
+    }
+}
+
+/// Which remedies the search may use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Remedies {
+    /// Re-sequence with the colliding steps forbidden together.
+    pub resequence: bool,
+    /// Wait at a node.
+    pub wait: bool,
+    /// Pause at a point of the path.
+    pub pause: bool,
+    /// Run a move slower.
+    pub slow: bool,
+    /// Go around the other robot.
+    pub detour: bool,
+    /// Step aside to a parking pose.
+    pub step_aside: bool,
+}
+
+impl Remedies {
+    /// Every remedy.
+    pub const ALL: Remedies = Remedies {
+        resequence: true,
+        wait: true,
+        pause: true,
+        slow: true,
+        detour: true,
+        step_aside: true,
+    };
+
+    /// The names of `--remedies`, in this order.
+    pub const NAMES: [&'static str; 6] = [
+        "resequence",
+        "wait",
+        "pause",
+        "slow",
+        "detour",
+        "step-aside",
+    ];
+
+    /// The set of the names given (each one of [`Remedies::NAMES`]).
+    ///
+    /// ```
+    /// use workcell::wcp::Remedies;
+    /// let some = Remedies::of_names(["resequence", "pause"])?;
+    /// assert!(some.resequence && some.pause && !some.wait && !some.step_aside);
+    /// assert_eq!(Remedies::of_names(Remedies::NAMES)?, Remedies::ALL);
+    /// assert!(Remedies::of_names(["teleport"]).unwrap_err().contains("unknown remedy"));
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn of_names<'s>(names: impl IntoIterator<Item = &'s str>) -> Result<Remedies, String> {
+        let mut set = Remedies {
+            resequence: false,
+            wait: false,
+            pause: false,
+            slow: false,
+            detour: false,
+            step_aside: false,
+        };
+        for name in names {
+            let flag = match name {
+                "resequence" => &mut set.resequence,
+                "wait" => &mut set.wait,
+                "pause" => &mut set.pause,
+                "slow" => &mut set.slow,
+                "detour" => &mut set.detour,
+                "step-aside" => &mut set.step_aside,
+                other => {
+                    return Err(format!(
+                        "unknown remedy `{other}`: expected some of {}",
+                        Remedies::NAMES.join(", ")
+                    ))
+                }
+            };
+            *flag = true;
+        }
+        Ok(set)
+    }
+}
+
+impl Default for Remedies {
+    fn default() -> Self {
+        Remedies::ALL
+    }
+}

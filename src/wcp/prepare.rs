@@ -1,0 +1,173 @@
+//! Before sequencing: the lower bounds of every move and the moves planned up front
+//! ([`prepare`]), and what a solve reports as it goes ([`Progress`], [`StageTimes`]).
+
+use super::graph::{check_reachable, plan_reaches};
+use super::moves::{bounds, robot_nodes, MoveStore};
+use super::options::{Planning, SolveOptions, AUTO_ALL_MAX_MOVES};
+use super::schedule::Collision;
+use super::sequencer::{Bounds, ExactArcs, SequencerError};
+use crate::cell::{Cell, InputError};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Progress of a solve, for a progress bar. Called from the solving thread, except
+/// `move_planned`, which planning threads call.
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use std::sync::Mutex;
+/// use workcell::wcp::{prepare, solve, Collision, Progress, SolveOptions};
+/// /// Counts the moves planned and keeps each round's makespan.
+/// #[derive(Default)]
+/// struct Log { moves: AtomicUsize, rounds: Mutex<Vec<f64>> }
+/// impl Progress for Log {
+///     fn move_planned(&self) { self.moves.fetch_add(1, Ordering::Relaxed); }
+///     fn iteration(&self, _k: usize, makespan: f64, _c: Option<&Collision>) {
+///         self.rounds.lock().unwrap().push(makespan);
+///     }
+/// }
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let (opts, log) = (SolveOptions::default(), Log::default());
+/// let solved = solve(&cell, &prepare(&cell, &opts, &log)?, &opts, &log)?;
+/// assert!(log.moves.into_inner() > 0);
+/// // The last round checked is the final schedule.
+/// assert_eq!(log.rounds.into_inner().unwrap().last(), Some(&solved.schedule.makespan));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub trait Progress: Sync {
+    /// Planning starts: `total` moves to plan and certify.
+    fn planning(&self, _total: usize) {}
+    /// One more move planned.
+    fn move_planned(&self) {}
+    /// Round `k` (from 1) checked a schedule of this makespan.
+    fn iteration(&self, _k: usize, _makespan: f64, _collision: Option<&Collision>) {}
+    /// The sequencer starts its round `round` (from 1) on the travel times known so far.
+    fn sequencing(&self, _round: usize) {}
+    /// The sequencer found a plan of this makespan (on the travel times it knows; from any
+    /// thread).
+    fn best(&self, _makespan: f64) {}
+}
+
+impl Progress for () {}
+
+/// Wall time spent in each stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Planning and certifying the moves [`prepare`] plans (see [`Planning`]).
+    pub planning: Duration,
+    /// Building the lower bounds.
+    pub graph: Duration,
+    /// Sequencer runs, with the moves they plan.
+    pub sequencing: Duration,
+    /// Timing the schedules (including moves planned on demand).
+    pub scheduling: Duration,
+    /// Collision checks of the schedules.
+    pub checking: Duration,
+}
+
+/// The cell's moves and bounds, ready for sequencing.
+pub struct Prepared {
+    /// The one store of planned and certified moves.
+    pub moves: MoveStore,
+    /// The lower bound of every move.
+    pub bounds: Arc<Bounds>,
+    /// The moves every sequencing starts from: those [`prepare`] planned, per robot, both
+    /// ways.
+    pub known: Arc<ExactArcs>,
+    /// When [`SolveOptions::time_limit`] runs out.
+    pub deadline: Option<Instant>,
+    /// Time spent so far.
+    pub times: StageTimes,
+}
+
+/// Builds the lower bounds, plans and certifies for every task the move from the home of
+/// its nearest allowed robot (the next nearest when that one fails), or every move (see
+/// [`Planning`]). A task that no allowed robot
+/// can reach is an input error. The time limit counts from here.
+///
+/// ```
+/// use workcell::wcp::{prepare, SolveOptions};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+/// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+/// let prepared = prepare(&cell, &SolveOptions::default(), &())?;
+/// // A small cell has every move planned before sequencing: R1's from its home (node 0)
+/// // to the first task (node 1), both ways.
+/// assert!(prepared.known[0].contains_key(&(0, 1)) && prepared.known[0].contains_key(&(1, 0)));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn prepare(
+    cell: &Cell,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Prepared, InputError> {
+    let deadline = opts
+        .time_limit
+        .and_then(|limit| Instant::now().checked_add(limit));
+    let mut times = StageTimes::default();
+    let clock = Instant::now();
+    let bounds = Arc::new(bounds(cell));
+    times.graph = clock.elapsed();
+    let clock = Instant::now();
+    let moves = MoveStore::new(cell, &opts.planner);
+    let all_moves: usize = (0..cell.robots.len())
+        .map(|r| {
+            let n = robot_nodes(cell, r).len();
+            n * (n - 1) / 2
+        })
+        .sum();
+    let plan_all = match opts.planning {
+        Planning::Auto => all_moves <= AUTO_ALL_MAX_MOVES,
+        Planning::Lazy => false,
+        Planning::All => true,
+    };
+    let pairs: Vec<(usize, usize, usize)> = if plan_all {
+        let mut pairs = Vec::with_capacity(all_moves);
+        for r in 0..cell.robots.len() {
+            let nodes = robot_nodes(cell, r);
+            for (i, &a) in nodes.iter().enumerate() {
+                pairs.extend(nodes[i + 1..].iter().map(|&b| (r, a, b)));
+            }
+        }
+        progress.planning(pairs.len());
+        moves.plan_all(&pairs, &|| progress.move_planned());
+        pairs
+    } else {
+        progress.planning(cell.tasks.len());
+        plan_reaches(cell, &moves, &bounds, &|| progress.move_planned())
+    };
+    check_reachable(cell, &moves)?;
+    let mut known: ExactArcs = vec![Default::default(); cell.robots.len()];
+    for &(r, a, b) in &pairs {
+        let d = moves.duration(r, a, b).unwrap_or(f64::INFINITY);
+        known[r].insert((a, b), d);
+        known[r].insert((b, a), d);
+    }
+    times.planning = clock.elapsed();
+    Ok(Prepared {
+        moves,
+        bounds,
+        known: Arc::new(known),
+        deadline,
+        times,
+    })
+}
+
+/// A sequencer error in the cell's terms.
+///
+/// ```
+/// use workcell::wcp::{sequencer::SequencerError, sequencer_error};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let e = sequencer_error(&cell, SequencerError::TaskUnassignable { task: 2 });
+/// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("weld-3"), "tasks[2]"));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn sequencer_error(cell: &Cell, e: SequencerError) -> InputError {
+    match e {
+        SequencerError::TaskUnassignable { task } => cell.error(
+            Some(&cell.tasks[task].name),
+            format!("tasks[{task}]"),
+            "no allowed robot can travel to this task and back home",
+        ),
+        other => cell.error(None, "", other),
+    }
+}

@@ -1,0 +1,159 @@
+//! The sequencer's terms: the steps of a route, a conflict between two steps, the options,
+//! the solution and why there may be none.
+
+use std::collections::HashSet;
+use std::time::Instant;
+
+/// One thing a robot does on its route, in the node indices of [`Instance`](super::Instance)
+/// (0 = the robot's home, `1 + t` = task `t`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Step {
+    /// The robot travels from node `from` to node `to`.
+    Move {
+        /// Node the move starts from.
+        from: usize,
+        /// Node the move ends at.
+        to: usize,
+    },
+    /// The robot stays at `node`: at home (every robot, always) or at a task it does.
+    Stay {
+        /// Node the robot stays at.
+        node: usize,
+    },
+}
+
+/// Feedback from the collision checker: robot `a.0` doing step `a.1` and
+/// robot `b.0` doing step `b.1` may not both be chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Conflict {
+    /// The first robot and its step.
+    pub a: (usize, Step),
+    /// The second robot and its step.
+    pub b: (usize, Step),
+}
+
+/// Knobs of [`solve`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SequencerOptions {
+    /// Seed of the random perturbations; the result depends only on it and the input.
+    pub seed: u64,
+    /// Independent runs of the local search (run in parallel, at least one);
+    /// the best one wins, the first one on ties.
+    pub restarts: usize,
+    /// Most perturbation rounds (ruin and recreate, then local search) per
+    /// restart; a restart stops earlier after `iterations / 4` rounds in a
+    /// row that do not improve its best plan.
+    pub iterations: usize,
+    /// Largest estimated work (elementary DP updates) for the exact search; 0 disables it.
+    pub exact_limit: u64,
+    /// When given, the local search stops at this instant and returns the best plan found so
+    /// far (the result then depends on the machine's speed).
+    pub deadline: Option<Instant>,
+}
+
+impl Default for SequencerOptions {
+    /// The exact search covers up to 12 tasks for up to 5 robots when every
+    /// task is allowed to every robot, more when tasks are restricted (a few
+    /// tens of milliseconds at most).
+    fn default() -> Self {
+        SequencerOptions {
+            seed: 0,
+            restarts: 4,
+            iterations: 400,
+            exact_limit: 10_000_000,
+            deadline: None,
+        }
+    }
+}
+
+/// The sequences found by [`solve`] and their costs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution {
+    /// Per robot, its tasks in visiting order.
+    pub sequences: Vec<Vec<usize>>,
+    /// Longest route time, as [`Instance::makespan`] computes it.
+    pub makespan: f64,
+    /// Sum of the route times.
+    pub total: f64,
+    /// Number of conflicts the sequences violate.
+    pub violations: usize,
+    /// The exact search proved the makespan minimal, with the total minimal
+    /// among makespan-optimal plans (up to rounding); with conflicts, only
+    /// when the collision-blind optimum violates none of them.
+    pub optimal: bool,
+}
+
+/// Why [`solve`] or [`Instance::new`] gave up.
+#[derive(thiserror::Error, Debug, Clone, PartialEq)]
+pub enum SequencerError {
+    /// No allowed robot has a finite way from its home to the task and back
+    /// (directly or through other tasks it may do).
+    #[error("task {task}: no allowed robot can reach it from home and come back")]
+    TaskUnassignable {
+        /// The task.
+        task: usize,
+    },
+    /// Inconsistent sizes, or durations or travel times that are NaN or negative.
+    #[error("bad instance: {0}")]
+    BadInstance(String),
+    /// A conflict names a robot or a node the instance does not have.
+    #[error("conflict {index}: {reason}")]
+    BadConflict {
+        /// Index of the conflict in the list given to [`solve`].
+        index: usize,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// Every plan found uses an infinite travel time (proved when the search was exact).
+    #[error("no plan found that avoids infinite travel times")]
+    Infeasible,
+}
+
+/// The steps a route uses: `Stay{0}` (home, always), `Move{0, 1+t1}`,
+/// `Stay{1+t1}`, `Move{1+t1, 1+t2}`, …, `Move{1+tk, 0}`.
+/// An empty route uses only `Stay{0}`.
+///
+/// ```
+/// use workcell::wcp::sequencer::{steps, Step};
+/// let (stay, go) = (|node| Step::Stay { node }, |from, to| Step::Move { from, to });
+/// assert_eq!(steps(&[2, 0]), [stay(0), go(0, 3), stay(3), go(3, 1), stay(1), go(1, 0)]);
+/// assert_eq!(steps(&[]), [stay(0)]);
+/// ```
+pub fn steps(route: &[usize]) -> Vec<Step> {
+    let mut out = Vec::with_capacity(2 * route.len() + 2);
+    out.push(Step::Stay { node: 0 });
+    let mut prev = 0;
+    for &t in route {
+        out.push(Step::Move {
+            from: prev,
+            to: t + 1,
+        });
+        out.push(Step::Stay { node: t + 1 });
+        prev = t + 1;
+    }
+    if !route.is_empty() {
+        out.push(Step::Move { from: prev, to: 0 });
+    }
+    out
+}
+
+/// Number of `conflicts` violated by `sequences` (one route per robot): robot
+/// `a.0` uses step `a.1` and robot `b.0` uses step `b.1`. Robots beyond
+/// `sequences` use no step.
+///
+/// ```
+/// use workcell::wcp::sequencer::{count_violations, Conflict, Step};
+/// // Robot 0 at task 0 (node 1) and robot 1 at task 1 (node 2) may not both happen.
+/// let c = Conflict { a: (0, Step::Stay { node: 1 }), b: (1, Step::Stay { node: 2 }) };
+/// assert_eq!(count_violations(&[c], &[vec![0], vec![1]]), 1);
+/// assert_eq!(count_violations(&[c], &[vec![0, 1], vec![]]), 0);
+/// assert_eq!(count_violations(&[c], &[vec![0]]), 0); // robot 1 does nothing
+/// ```
+pub fn count_violations(conflicts: &[Conflict], sequences: &[Vec<usize>]) -> usize {
+    let used: Vec<HashSet<Step>> = sequences
+        .iter()
+        .map(|s| steps(s).into_iter().collect())
+        .collect();
+    let uses = |(r, s): (usize, Step)| used.get(r).is_some_and(|set| set.contains(&s));
+    conflicts.iter().filter(|c| uses(c.a) && uses(c.b)).count()
+}
