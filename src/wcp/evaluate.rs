@@ -1,15 +1,15 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
 use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
-use super::moves::MoveStore;
+use super::moves::{limits, MoveStore};
 use super::options::SolveOptions;
 use super::prepare::StageTimes;
-use super::schedule::{Activity, BuildError, Collision, Delay, Schedule};
+use super::schedule::{route_nodes, Activity, BuildError, Collision, Delay, Schedule};
 use super::time_axis::{culprit, first_infinite_time};
 use crate::cell::{number, Cell, InputError, PieceSpec, Sequences};
 use crate::collision::{check, CheckReport};
 use crate::geometry::Vec2;
-use crate::planning::{time_primitives, Primitive, RobotLimits};
+use crate::planning::{time_primitives, Primitive};
 use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
@@ -76,10 +76,7 @@ pub fn evaluate(
         .waits
         .iter()
         .map(|w| {
-            let nodes: Vec<usize> = std::iter::once(0)
-                .chain(routes[w.robot].iter().map(|t| t + 1))
-                .chain([0])
-                .collect();
+            let nodes = route_nodes(&routes[w.robot]);
             Delay {
                 robot: w.robot,
                 before_move: w.before_move,
@@ -304,11 +301,7 @@ fn piece(cell: &Cell, r: usize, spec: &PieceSpec, opts: &SolveOptions) -> Piece 
         },
         PieceSpec::Go { primitives, scale } => {
             let robot = &cell.robots[r];
-            let limits = RobotLimits {
-                max_speed: robot.max_speed,
-                max_accel: robot.max_accel,
-                max_turn_rate: robot.max_turn_rate,
-            };
+            let limits = limits(robot);
             let primitives: Vec<Primitive> = primitives
                 .iter()
                 .map(|p| Primitive {

@@ -2,6 +2,7 @@
 //! certified time of every move planned so far, the admissible lower bound of the others.
 
 use super::moves::{robot_nodes, MoveFailure, MoveStore};
+use super::sequencer::task_node;
 use super::sequencer::Bounds;
 use crate::cell::{Cell, InputError};
 use petgraph::graph::{DiGraph, NodeIndex};
@@ -181,7 +182,7 @@ pub fn plan_reaches(
     let per_task: Vec<Vec<(usize, usize, usize)>> = (0..cell.tasks.len())
         .into_par_iter()
         .map(|t| {
-            let node = t + 1;
+            let node = task_node(t);
             let mut robots = cell.tasks[t].robots.clone();
             robots.sort_by(|&a, &b| {
                 bounds
@@ -264,7 +265,7 @@ pub fn check_reachable(cell: &Cell, store: &MoveStore) -> Result<(), InputError>
         }
     }
     for (t, task) in cell.tasks.iter().enumerate() {
-        let node = t + 1;
+        let node = task_node(t);
         // A move already known to succeed settles it without planning any other.
         let known_ok = |r: &usize| matches!(store.known(*r, 0, node), Some(Ok(_)));
         if task.robots.iter().any(known_ok)

@@ -7,6 +7,7 @@
 //! task `t`. A move and its reverse visit the same poses (the motion model is symmetric in
 //! time), so one plan and one certificate serve both directions.
 
+use super::sequencer::{node_task, task_node};
 use super::sequencer::{BoundLimits, Bounds};
 use crate::cell::{Cell, CellRobot};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
@@ -81,7 +82,7 @@ impl fmt::Display for MoveFailure {
 pub fn node_pose(cell: &Cell, r: usize, node: usize) -> Pose {
     match node {
         0 => cell.robots[r].home,
-        n => cell.tasks[n - 1].at,
+        n => cell.tasks[node_task(n)].at,
     }
 }
 
@@ -96,7 +97,7 @@ pub fn node_pose(cell: &Cell, r: usize, node: usize) -> Pose {
 pub fn node_name(cell: &Cell, r: usize, node: usize) -> &str {
     match node {
         0 => &cell.robots[r].name,
-        n => &cell.tasks[n - 1].name,
+        n => &cell.tasks[node_task(n)].name,
     }
 }
 
@@ -123,12 +124,13 @@ pub fn robot_nodes(cell: &Cell, r: usize) -> Vec<usize> {
         .chain(
             tasks
                 .filter(|(_, t)| t.robots.contains(&r))
-                .map(|(k, _)| k + 1),
+                .map(|(k, _)| task_node(k)),
         )
         .collect()
 }
 
-fn limits(robot: &CellRobot) -> RobotLimits {
+/// The planner's limits of a robot of the cell.
+pub(crate) fn limits(robot: &CellRobot) -> RobotLimits {
     RobotLimits {
         max_speed: robot.max_speed,
         max_accel: robot.max_accel,

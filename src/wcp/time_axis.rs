@@ -7,6 +7,7 @@
 
 use super::moves::MoveStore;
 use super::schedule::{route_nodes, Activity, Delay, RobotSchedule};
+use super::sequencer::node_task;
 use crate::cell::Cell;
 
 /// The time of the first sample or segment end of a robot's schedule that is not finite (a
@@ -162,8 +163,8 @@ fn replay(
         push(Activity::Move { from, to }, planned.duration, &mut now);
         if to != 0 {
             push(
-                Activity::Work(to - 1),
-                cell.tasks[to - 1].duration,
+                Activity::Work(node_task(to)),
+                cell.tasks[node_task(to)].duration,
                 &mut now,
             );
         }

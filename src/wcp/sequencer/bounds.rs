@@ -14,6 +14,7 @@
 //! Without obstacles in the way the bound is the planned time, bit for bit: the planner times
 //! the straight move with the same operations.
 
+use super::terms::node_task;
 use crate::geometry::Vec2;
 use crate::planning::{angle_between, rest_to_rest_time};
 
@@ -88,7 +89,7 @@ impl Bounds {
     pub fn pose(&self, r: usize, node: usize) -> (Vec2, f64) {
         match node {
             0 => self.homes[r],
-            n => self.tasks[n - 1],
+            n => self.tasks[node_task(n)],
         }
     }
 

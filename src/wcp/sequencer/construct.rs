@@ -1,6 +1,7 @@
 //! Cheapest insertion, for the first plan of a restart and to recreate a
 //! plan after part of it was ruined.
 
+use super::terms::task_node;
 use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -11,7 +12,7 @@ use super::plan::{Move, Obj, Plan, Scratch};
 /// The insertion of unassigned task `t` that gives the best objective
 /// (first one found on ties: robots, then positions, in increasing order).
 fn best_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -> Move {
-    let x = t + 1;
+    let x = task_node(t);
     let mut best = (Obj::WORST, None);
     for &r in &model.capable_robots[t] {
         let route = &plan.routes[r];
@@ -33,7 +34,7 @@ fn best_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -
 /// order on ties).
 fn near_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -> Move {
     let near = model.neighbours.as_ref().expect("a granular model");
-    let x = t + 1;
+    let x = task_node(t);
     let mut gaps: Vec<(usize, usize)> = Vec::new();
     for u in near.of(t) {
         let (r, q) = plan.pos[u];
@@ -185,7 +186,7 @@ fn related(model: &Model, seed: usize, q: usize) -> Vec<usize> {
             let d = model.capable_robots[t]
                 .iter()
                 .filter(|&&r| model.can(r, seed))
-                .map(|&r| model.c(r, x, t + 1) + model.c(r, t + 1, x))
+                .map(|&r| model.c(r, x, task_node(t)) + model.c(r, task_node(t), x))
                 .fold(f64::INFINITY, f64::min);
             (if t == seed { -1.0 } else { d }, t)
         })

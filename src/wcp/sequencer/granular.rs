@@ -7,6 +7,7 @@
 //!
 //! The work of a descent is then proportional to what changed, not to the number of tasks.
 
+use super::terms::{node_task, task_node};
 use std::collections::VecDeque;
 
 use super::local_search::Pick;
@@ -38,9 +39,9 @@ impl Active {
 
     /// Looks at task `t` again (nodes: 0 is a home, not a task).
     pub fn push_node(&mut self, node: usize) {
-        if node > 0 && !self.queued[node - 1] {
-            self.queued[node - 1] = true;
-            self.queue.push_back(node - 1);
+        if node > 0 && !self.queued[node_task(node)] {
+            self.queued[node_task(node)] = true;
+            self.queue.push_back(node_task(node));
         }
     }
 
@@ -72,7 +73,7 @@ pub(super) fn local_search(
         for node in plan.touched(&mv) {
             active.push_node(node);
         }
-        active.push_node(t + 1);
+        active.push_node(task_node(t));
         plan.apply(model, &mv, scratch);
         if plan.critical() != critical {
             critical = plan.critical();
@@ -206,7 +207,7 @@ fn swaps(model: &Model, plan: &Plan, scratch: &mut Scratch, pick: &mut Pick, t: 
     let dn = &model.dn;
     for u in near.of(t) {
         let ((r1, i), (r2, j)) = (plan.pos[t], plan.pos[u]);
-        let (x, y) = (t + 1, u + 1);
+        let (x, y) = (task_node(t), task_node(u));
         let (ra, rb) = (&plan.routes[r1], &plan.routes[r2]);
         if r1 != r2 {
             if !model.can(r2, t) || !model.can(r1, u) {

@@ -1,5 +1,6 @@
 //! The data of one sequencing problem and the cost of a plan.
 
+use super::terms::task_node;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -258,9 +259,9 @@ impl Instance {
         let mut acc = 0.0;
         let mut prev = 0;
         for &t in seq {
-            acc += self.travel(r, prev, t + 1);
+            acc += self.travel(r, prev, task_node(t));
             acc += self.duration[t];
-            prev = t + 1;
+            prev = task_node(t);
         }
         if !seq.is_empty() {
             acc += self.travel(r, prev, 0);

@@ -56,7 +56,8 @@ pub use bounds::{BoundLimits, Bounds};
 pub use instance::{ExactArcs, Instance};
 pub use model::GRANULAR_FROM_TASKS;
 pub use terms::{
-    count_violations, steps, Conflict, SequencerError, SequencerOptions, Solution, Step,
+    count_violations, node_task, steps, task_node, Conflict, SequencerError, SequencerOptions,
+    Solution, Step,
 };
 
 /// Assigns and orders the tasks, minimising (violated conflicts, makespan,

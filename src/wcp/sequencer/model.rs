@@ -1,6 +1,7 @@
 //! The instance as the searches see it: who can really do what, finite
 //! penalised travel times and an index of the conflicts.
 
+use super::terms::task_node;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
@@ -157,15 +158,16 @@ impl Model {
                 // planned before sequencing).
                 for t in 0..tasks {
                     capable[r * tasks + t] = inst.allowed[r][t]
-                        && inst.travel(r, 0, t + 1).is_finite()
-                        && inst.travel(r, t + 1, 0).is_finite();
+                        && inst.travel(r, 0, task_node(t)).is_finite()
+                        && inst.travel(r, task_node(t), 0).is_finite();
                 }
                 continue;
             }
             let there = reachable(inst, r, true);
             let back = reachable(inst, r, false);
             for t in 0..tasks {
-                capable[r * tasks + t] = inst.allowed[r][t] && there[t + 1] && back[t + 1];
+                capable[r * tasks + t] =
+                    inst.allowed[r][t] && there[task_node(t)] && back[task_node(t)];
             }
         }
         let capable_robots: Vec<Vec<usize>> = (0..tasks)
@@ -315,8 +317,8 @@ impl Model {
             .map(|t| {
                 let mut rs = self.capable_robots[t].clone();
                 rs.sort_by(|&a, &b| {
-                    self.c(a, 0, t + 1)
-                        .total_cmp(&self.c(b, 0, t + 1))
+                    self.c(a, 0, task_node(t))
+                        .total_cmp(&self.c(b, 0, task_node(t)))
                         .then(a.cmp(&b))
                 });
                 rs.truncate(HOME_CANDIDATES);
@@ -493,11 +495,11 @@ mod tests {
         }
         for t in 0..50 {
             for u in nb.of(t) {
-                arcs.push((t % robots, t + 1, u + 1));
-                arcs.push((t % robots, u + 1, t + 1));
+                arcs.push((t % robots, task_node(t), task_node(u)));
+                arcs.push((t % robots, task_node(u), task_node(t)));
             }
             // Both ends of the band, and just beyond.
-            let s = model.slot[t + 1];
+            let s = model.slot[task_node(t)];
             for d in [
                 1,
                 lazy_costs::BAND - 1,
@@ -506,8 +508,8 @@ mod tests {
             ] {
                 for other in [s + d, s.wrapping_sub(d)] {
                     if other <= tasks {
-                        arcs.push((t % robots, t + 1, node[other]));
-                        arcs.push((t % robots, node[other], t + 1));
+                        arcs.push((t % robots, task_node(t), node[other]));
+                        arcs.push((t % robots, node[other], task_node(t)));
                     }
                 }
             }

@@ -2,6 +2,7 @@
 //! that change them.
 
 use super::model::Model;
+use super::terms::task_node;
 
 /// Relative tolerance of every comparison: rounding never makes a move look
 /// like an improvement, so the search cannot cycle.
@@ -132,7 +133,7 @@ impl Plan {
         for (r, seq) in seqs.iter().enumerate() {
             plan.count_steps(model, r, -1);
             plan.routes[r] = std::iter::once(0)
-                .chain(seq.iter().map(|t| t + 1))
+                .chain(seq.iter().map(|&t| task_node(t)))
                 .chain(std::iter::once(0))
                 .collect();
             plan.count_steps(model, r, 1);
@@ -240,7 +241,7 @@ impl Plan {
         match *mv {
             Move::Insert { t, r, gap } => {
                 load(a, r);
-                a.insert(gap + 1, t + 1);
+                a.insert(gap + 1, task_node(t));
                 (r, None)
             }
             Move::Remove { r, i } => {
@@ -296,7 +297,7 @@ impl Plan {
     pub fn touched(&self, mv: &Move) -> Vec<usize> {
         let at = |r: usize, k: usize| self.routes[r][k];
         match *mv {
-            Move::Insert { t, r, gap } => vec![t + 1, at(r, gap), at(r, gap + 1)],
+            Move::Insert { t, r, gap } => vec![task_node(t), at(r, gap), at(r, gap + 1)],
             Move::Remove { r, i } => vec![at(r, i - 1), at(r, i), at(r, i + 1)],
             Move::Shift {
                 r1,
@@ -419,7 +420,7 @@ impl Plan {
         assert_eq!(self.used, fresh.used);
         assert_eq!(self.obj(), fresh.obj());
         for (t, &p) in self.pos.iter().enumerate() {
-            assert!(p == NONE || self.routes[p.0][p.1] == t + 1);
+            assert!(p == NONE || self.routes[p.0][p.1] == task_node(t));
         }
     }
 

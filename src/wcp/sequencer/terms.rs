@@ -4,6 +4,24 @@
 use std::collections::HashSet;
 use std::time::Instant;
 
+/// The node of task `t` in every route, graph and instance: node 0 is the robot's home,
+/// task `t` is node `t + 1`.
+///
+/// ```
+/// use workcell::wcp::sequencer::{node_task, task_node};
+/// assert_eq!((task_node(0), node_task(task_node(7))), (1, 7));
+/// ```
+#[inline]
+pub const fn task_node(t: usize) -> usize {
+    t + 1
+}
+
+/// The task at node `n` (`n ≥ 1`; node 0 is home).
+#[inline]
+pub const fn node_task(n: usize) -> usize {
+    n - 1
+}
+
 /// One thing a robot does on its route, in the node indices of [`Instance`](super::Instance)
 /// (0 = the robot's home, `1 + t` = task `t`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -126,10 +144,10 @@ pub fn steps(route: &[usize]) -> Vec<Step> {
     for &t in route {
         out.push(Step::Move {
             from: prev,
-            to: t + 1,
+            to: task_node(t),
         });
-        out.push(Step::Stay { node: t + 1 });
-        prev = t + 1;
+        out.push(Step::Stay { node: task_node(t) });
+        prev = task_node(t);
     }
     if !route.is_empty() {
         out.push(Step::Move { from: prev, to: 0 });

@@ -9,8 +9,8 @@ use crate::planning::{plan_move, time_primitives, PlannedMove, Primitive, RobotL
 use crate::wcp::feedback::clearing::{clears, least};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
-use crate::wcp::moves::certify;
 use crate::wcp::moves::MoveStore;
+use crate::wcp::moves::{certify, limits};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::schedule::{route_nodes, Activity, RobotSchedule, Segment};
 use std::collections::HashMap;
@@ -54,12 +54,7 @@ impl<'a> Ctx<'a> {
     }
 
     pub(super) fn limits(&self, r: usize) -> RobotLimits {
-        let robot = &self.cell.robots[r];
-        RobotLimits {
-            max_speed: robot.max_speed,
-            max_accel: robot.max_accel,
-            max_turn_rate: robot.max_turn_rate,
-        }
+        limits(&self.cell.robots[r])
     }
 
     /// Times primitives for robot `r` as the planner would.
