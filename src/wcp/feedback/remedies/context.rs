@@ -264,3 +264,14 @@ pub(super) fn pieces_of(ctx: &Ctx, view: &View, x: usize, m: usize) -> Option<Ve
         }
     }
 }
+
+/// Of the candidates tried, `(end of the changed leg, candidate)`, the one that ends
+/// earliest; on ties the one tried first (each remedy tries its best guess first).
+pub(super) fn earliest<T>(tried: impl Iterator<Item = (f64, T)>) -> Option<T> {
+    tried
+        .fold(None, |best: Option<(f64, T)>, c| match best {
+            Some(b) if b.0 <= c.0 => Some(b),
+            _ => Some(c),
+        })
+        .map(|(_, candidate)| candidate)
+}

@@ -1,7 +1,7 @@
 //! Detours: the leg re-planned with the other robot as an obstacle, its pose if it stands
 //! or the region it sweeps over the conflict window if it moves.
 
-use super::context::{child, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
+use super::context::{child, earliest, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
 use crate::geometry::{ConvexPolygon, Posed, Vec2};
 use crate::motion::Pose;
 use crate::planning::convex_hull;
@@ -114,13 +114,10 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             window,
             &ctx.opts.check,
         )
-        .then_some((s.end, motion, new, s))
+        .then_some((s.end, (motion, new, s)))
     });
-    // The earliest end; on ties the first window tried.
-    let (_, motion, new, s) = tried.fold(None, |best: Option<(f64, _, _, _)>, c| match best {
-        Some(b) if b.0 <= c.0 => Some(b),
-        _ => Some(c),
-    })?;
+    // On ties the first window tried.
+    let (motion, new, s) = earliest(tried)?;
     let remedy = Remedy::Detour {
         robot: side.x,
         leg: m,

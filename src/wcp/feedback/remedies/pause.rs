@@ -2,14 +2,15 @@
 //! whole leg run slower (time scaling keeps every limit).
 
 use super::context::{
-    child, horizons, least_clearing, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View,
+    child, earliest, horizons, least_clearing, leg_nodes, leg_window, pieces_of, Child, Ctx, Side,
+    View,
 };
 use crate::geometry::Vec2;
 use crate::planning::Primitive;
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
 use crate::wcp::moves::certify;
-use crate::wcp::schedule::{Activity, RobotSchedule, Segment};
+use crate::wcp::schedule::{Activity, Segment};
 
 /// Back-off distances of a pause, in units of the two robots' radii summed: how far short
 /// of the contact point along its path the robot stops.
@@ -119,16 +120,10 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             })
         };
         let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, make)?;
-        Some((s.end, d, stop, new, s))
+        Some((s.end, (d, stop, new, s)))
     });
-    // The earliest end; on ties the stop nearest the contact (tried first).
-    let (_, d, stop, new, s) = tried.fold(
-        None,
-        |best: Option<(f64, f64, Vec2, Leg, RobotSchedule)>, c| match best {
-            Some(b) if b.0 <= c.0 => Some(b),
-            _ => Some(c),
-        },
-    )?;
+    // On ties the stop nearest the contact (tried first).
+    let (d, stop, new, s) = earliest(tried)?;
     let remedy = Remedy::Pause {
         robot: side.x,
         leg: m,

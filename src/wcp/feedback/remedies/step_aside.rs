@@ -2,7 +2,7 @@
 //! on rings about where it stands), waits there and goes on.
 
 use super::context::{
-    child, horizons, least_clearing, leg_nodes, leg_window, Child, Ctx, Side, View,
+    child, earliest, horizons, least_clearing, leg_nodes, leg_window, Child, Ctx, Side, View,
 };
 use crate::collision::Body;
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
@@ -10,7 +10,7 @@ use crate::motion::{Motion, Pose};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
 use crate::wcp::moves::node_pose;
-use crate::wcp::schedule::{Activity, RobotSchedule};
+use crate::wcp::schedule::Activity;
 
 /// Parking rings, in the parking robot's radii, and directions per ring.
 const PARK_RINGS: [f64; 5] = [2.0, 3.0, 4.5, 6.5, 9.0];
@@ -133,15 +133,9 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
                 })
             };
             let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, make)?;
-            Some((s.end, p, d, new, s))
+            Some((s.end, (p, d, new, s)))
         });
-    let (_, park, d, new, s) = tried.fold(
-        None,
-        |best: Option<(f64, Pose, f64, Leg, RobotSchedule)>, c| match best {
-            Some(b) if b.0 <= c.0 => Some(b),
-            _ => Some(c),
-        },
-    )?;
+    let (park, d, new, s) = earliest(tried)?;
     let remedy = Remedy::StepAside {
         robot: x,
         leg: m,
