@@ -70,7 +70,7 @@ pub fn evaluate(
 ) -> Result<Evaluated, InputError> {
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    let cache = MoveStore::new(cell, &opts.planner);
+    let moves = MoveStore::new(cell, &opts.planner);
     let routes = &sequences.routes;
     let delays: Vec<Delay> = sequences
         .waits
@@ -99,7 +99,7 @@ pub fn evaluate(
         };
         legs = with_leg(&legs, spec.robot, spec.leg, new);
     }
-    let schedule = match Schedule::build(cell, routes, &legs, &cache) {
+    let schedule = match Schedule::build(cell, routes, &legs, &moves) {
         Ok(schedule) => schedule,
         Err(BuildError::Precision { robot, time }) => {
             let at = Placement {
@@ -107,7 +107,7 @@ pub fn evaluate(
                 time,
                 delays: &delays,
             };
-            return Err(precision_error(cell, sequences, sequences_file, &cache, at));
+            return Err(precision_error(cell, sequences, sequences_file, &moves, at));
         }
         Err(e @ BuildError::Discontinuous { .. }) => {
             let (r, BuildError::Discontinuous { leg, .. }) = (e.robot(), &e) else {
@@ -157,7 +157,7 @@ pub fn evaluate(
             time,
             delays: &delays,
         };
-        return Err(precision_error(cell, sequences, sequences_file, &cache, at));
+        return Err(precision_error(cell, sequences, sequences_file, &moves, at));
     }
     times.scheduling = clock.elapsed();
     let clock = Instant::now();
@@ -191,13 +191,13 @@ fn precision_error(
     cell: &Cell,
     sequences: &Sequences,
     sequences_file: &Path,
-    cache: &MoveStore,
+    moves: &MoveStore,
     at: Placement,
 ) -> InputError {
     let (r, time) = (at.robot, at.time);
     let name = &cell.robots[r].name;
     let route = &sequences.routes[r];
-    let Some(misplaced) = culprit(cell, r, route, at.delays, cache, time) else {
+    let Some(misplaced) = culprit(cell, r, route, at.delays, moves, time) else {
         let reason = format!("at t = {time:e} f64 cannot place the robot's schedule");
         return cell.error(Some(name), format!("robots[{r}]"), reason);
     };

@@ -87,10 +87,10 @@ pub fn culprit(
     r: usize,
     route: &[usize],
     delays: &[Delay],
-    cache: &MoveStore,
+    moves: &MoveStore,
     time: f64,
 ) -> Option<Misplaced> {
-    let stretches = replay(cell, r, route, delays, cache);
+    let stretches = replay(cell, r, route, delays, moves);
     let before = stretches.iter().filter(|s| s.start <= time);
     let longest = *before
         .clone()
@@ -130,7 +130,7 @@ fn replay(
     r: usize,
     route: &[usize],
     delays: &[Delay],
-    cache: &MoveStore,
+    moves: &MoveStore,
 ) -> Vec<Stretch> {
     let mut out = Vec::new();
     if route.is_empty() {
@@ -157,7 +157,7 @@ fn replay(
         if wait > 0.0 {
             push(Activity::Wait(from), wait, &mut now);
         }
-        let Ok(planned) = cache.get(r, from, to) else {
+        let Ok(planned) = moves.get(r, from, to) else {
             break;
         };
         push(Activity::Move { from, to }, planned.duration, &mut now);

@@ -136,7 +136,7 @@ impl Greedy<'_> {
         let (Some(b), Some(seg_b)) = (c.robots.1, c.segments.1) else {
             return Ok(None);
         };
-        let (cell, cache) = (self.cell, &self.prepared.moves);
+        let (cell, moves) = (self.cell, &self.prepared.moves);
         let a = c.robots.0;
         let mut best: Option<Candidate> = None;
         self.conflicts.push(Conflict {
@@ -176,7 +176,7 @@ impl Greedy<'_> {
                 cell,
                 &self.routes,
                 &self.delays,
-                cache,
+                moves,
                 full,
                 y,
                 seg_x.end,
@@ -184,7 +184,7 @@ impl Greedy<'_> {
             )?;
             let mut candidate = self.delays.clone();
             candidate.push(delay);
-            let makespan = build(cell, &self.routes, &self.legs(&candidate), cache)?.makespan;
+            let makespan = build(cell, &self.routes, &self.legs(&candidate), moves)?.makespan;
             if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                 best = Some(Candidate {
                     makespan,
@@ -249,7 +249,7 @@ fn shortest_delay(
     cell: &Cell,
     routes: &[Vec<usize>],
     delays: &[Delay],
-    cache: &MoveStore,
+    moves: &MoveStore,
     full: Delay,
     other: usize,
     segment_end: f64,
@@ -262,7 +262,7 @@ fn shortest_delay(
         };
         let mut trial = delays.to_vec();
         trial.push(delay);
-        let schedule = build(cell, routes, &Delay::legs(cell.robots.len(), &trial), cache)?;
+        let schedule = build(cell, routes, &Delay::legs(cell.robots.len(), &trial), moves)?;
         let report = check(&schedule.pair_scene(cell, full.robot, other), &opts.check);
         // The pair must not meet while the conflicting activity lasts, nor later with one of
         // them already home for good: no wait could separate them then.

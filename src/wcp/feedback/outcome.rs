@@ -134,17 +134,17 @@ pub(super) fn build(
     cell: &Cell,
     routes: &[Vec<usize>],
     legs: &Legs,
-    cache: &MoveStore,
+    moves: &MoveStore,
 ) -> Result<Schedule, InputError> {
-    Schedule::build(cell, routes, legs, cache)
-        .map_err(|e| build_error(cell, routes, legs, cache, e))
+    Schedule::build(cell, routes, legs, moves)
+        .map_err(|e| build_error(cell, routes, legs, moves, e))
 }
 
 fn build_error(
     cell: &Cell,
     routes: &[Vec<usize>],
     legs: &Legs,
-    cache: &MoveStore,
+    moves: &MoveStore,
     e: BuildError,
 ) -> InputError {
     let robot = &cell.robots[e.robot()].name;
@@ -163,7 +163,7 @@ fn build_error(
         // robot's limits otherwise (its waits are the solver's, never the user's).
         BuildError::Precision { robot: r, time } => {
             let delays = Delay::of_legs(routes, legs);
-            let blamed = culprit(cell, r, &routes[r], &delays, cache, time).map(|m| m.blamed);
+            let blamed = culprit(cell, r, &routes[r], &delays, moves, time).map(|m| m.blamed);
             match blamed.map(|b| b.activity) {
                 Some(Activity::Work(k)) => cell.error(
                     Some(&cell.tasks[k].name),

@@ -143,7 +143,7 @@ pub(super) fn solve(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
-    let cache = &prepared.moves;
+    let moves = &prepared.moves;
     let mut times = prepared.times;
     let clock = Instant::now();
     let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
@@ -152,7 +152,7 @@ pub(super) fn solve(
         cell,
         prepared,
         opts,
-        ctx: Ctx::new(cell, cache, opts),
+        ctx: Ctx::new(cell, moves, opts),
         nodes: Vec::new(),
         queue: BinaryHeap::new(),
         seen: HashSet::new(),
@@ -164,7 +164,7 @@ pub(super) fn solve(
     };
     let legs = default_legs(cell.robots.len());
     search.seen.insert(fingerprint(&blind.sequences, &legs));
-    let root = build(cell, &blind.sequences, &legs, cache)?;
+    let root = build(cell, &blind.sequences, &legs, moves)?;
     let root = search.add(Node {
         routes: Arc::new(blind.sequences.clone()),
         conflicts: Arc::new(Vec::new()),
@@ -420,7 +420,7 @@ impl Search<'_> {
             node.depth + 1,
         );
         // No re-sequencing is expected to beat the collision-blind plan.
-        let route_makespan = self.blind_makespan;
+        let blind_makespan = self.blind_makespan;
         let (discrepancies, deviated_at) = (node.discrepancies, node.deviated_at);
         let mut made = Vec::new();
         for child in children {
@@ -483,7 +483,7 @@ impl Search<'_> {
                 conflicts,
                 legs: default_legs(self.cell.robots.len()),
                 robots: Vec::new(),
-                makespan: route_makespan,
+                makespan: blind_makespan,
                 parent: Some(id),
                 remedy: Some(Remedy::Resequence),
                 depth,

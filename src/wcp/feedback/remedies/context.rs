@@ -206,11 +206,11 @@ pub(super) fn least_clearing(
     view: &View,
     side: &Side,
     (m, t0): (usize, f64),
-    bounds: &[f64],
+    horizons: &[f64],
     make: impl Fn(f64) -> Option<Leg>,
 ) -> Option<(f64, Leg, RobotSchedule)> {
     let opts = &ctx.opts.check;
-    bounds.iter().find_map(|&hi| {
+    horizons.iter().find_map(|&hi| {
         let (value, (new, schedule)) = least(0.0, hi, |v| {
             let new = make(v)?;
             let s = ctx.rebuild(view, side.x, m, &new)?;

@@ -89,8 +89,8 @@ fn wait(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     }
     let old = leg(view.legs, side.x, m).clone();
     let t0 = leg_window(&view.robots[side.x], m).0;
-    let bounds = horizons(view, side.y, &side.sy, t0);
-    let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, |d| {
+    let horizons = horizons(view, side.y, &side.sy, t0);
+    let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, |d| {
         Some(Leg {
             wait: old.wait + d,
             ..old.clone()

@@ -86,7 +86,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let reach = ctx.cell.robots[side.x].shape.radius() + ctx.cell.robots[side.y].shape.radius();
     let old = leg(view.legs, side.x, m).clone();
     let t0 = leg_window(&view.robots[side.x], m).0;
-    let bounds = horizons(view, side.y, &side.sy, t0);
+    let horizons = horizons(view, side.y, &side.sy, t0);
     let tried = PAUSE_BACKOFF.iter().filter_map(|back| {
         let (before, after) = split_chain(&motion.primitives, at - back * reach)?;
         let (first, second) = (ctx.timed(side.x, &before), ctx.timed(side.x, &after));
@@ -119,7 +119,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
                 ..old.clone()
             })
         };
-        let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, make)?;
+        let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
         Some((s.end, (d, stop, new, s)))
     });
     // On ties the stop nearest the contact (tried first).
@@ -152,11 +152,11 @@ pub(super) fn slow(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let old = leg(view.legs, side.x, m).clone();
     let t0 = leg_window(&view.robots[side.x], m).0;
     // Slowing by 1 + D / moving delays the leg's end by D.
-    let bounds: Vec<f64> = horizons(view, side.y, &side.sy, t0)
+    let extras: Vec<f64> = horizons(view, side.y, &side.sy, t0)
         .into_iter()
         .map(|d| (d / moving).min(MAX_SLOW - 1.0))
         .collect();
-    let (extra, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, |e| {
+    let (extra, new, s) = least_clearing(ctx, view, side, (m, t0), &extras, |e| {
         let scaled: Vec<Piece> = pieces
             .iter()
             .map(|p| match p {

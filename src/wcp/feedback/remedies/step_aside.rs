@@ -96,8 +96,8 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     } else {
         leg_window(xs, m).0
     };
-    let bounds = horizons(view, side.y, &side.sy, t0);
-    let until = t0 + bounds.last().copied().unwrap_or(0.0);
+    let horizons = horizons(view, side.y, &side.sy, t0);
+    let until = t0 + horizons.last().copied().unwrap_or(0.0);
     let (a, b) = (node_pose(ctx.cell, x, from), node_pose(ctx.cell, x, to));
     let old = leg(view.legs, x, m).clone();
     let keep_wait = matches!(side.sx.activity, Activity::Done);
@@ -132,7 +132,7 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
                     ),
                 })
             };
-            let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &bounds, make)?;
+            let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
             Some((s.end, (p, d, new, s)))
         });
     let (park, d, new, s) = earliest(tried)?;
