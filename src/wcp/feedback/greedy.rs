@@ -168,7 +168,7 @@ impl Greedy<'_> {
                 &schedule.robots[x].segments,
                 x,
                 seg_x.leg,
-                gone(&schedule.robots[y].segments, &seg_y),
+                schedule.robots[y].left(&seg_y),
             ) else {
                 continue;
             };
@@ -279,21 +279,6 @@ fn shortest_delay(
         }
     }
     Ok(full)
-}
-
-/// When a robot has left the place of its segment `seg`: the end of a move, or, for a
-/// robot standing still (working or waiting), the end of the move that takes it away. Waiting
-/// only until it stops standing there would start both robots at once, at the same spot.
-fn gone(segments: &[Segment], seg: &Segment) -> f64 {
-    let next = segments
-        .iter()
-        .skip_while(|s| *s != seg)
-        .nth(1)
-        .filter(|s| matches!(s.activity, Activity::Move { .. }));
-    match (seg.activity, next) {
-        (Activity::Work(_) | Activity::Wait(_), Some(leave)) => leave.end,
-        _ => seg.end,
-    }
 }
 
 /// A wait that makes robot `x` start move `m` when the other robot's activity ends.

@@ -12,7 +12,7 @@ use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
 use crate::wcp::moves::MoveStore;
 use crate::wcp::moves::{certify, limits};
 use crate::wcp::options::SolveOptions;
-use crate::wcp::schedule::{route_nodes, Activity, RobotSchedule, Segment};
+use crate::wcp::schedule::{route_nodes, RobotSchedule, Segment};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -180,18 +180,7 @@ pub(super) fn leg_window(s: &RobotSchedule, m: usize) -> (f64, f64) {
 /// then until it is home for good. Finite and positive only.
 pub(super) fn horizons(view: &View, y: usize, sy: &Segment, t0: f64) -> Vec<f64> {
     let ys = &view.robots[y];
-    let gone = match sy.activity {
-        Activity::Move { .. } => sy.end,
-        Activity::Done => f64::INFINITY,
-        // Standing: until the motion that takes it away ends.
-        _ => ys
-            .segments
-            .iter()
-            .skip_while(|g| g.start < sy.end)
-            .find(|g| matches!(g.activity, Activity::Move { .. }))
-            .map_or(f64::INFINITY, |g| g.end),
-    };
-    let mut out: Vec<f64> = [gone - t0, ys.end - t0]
+    let mut out: Vec<f64> = [ys.left(sy) - t0, ys.end - t0]
         .into_iter()
         .filter(|d| d.is_finite() && *d > 0.0)
         .collect();
