@@ -2,15 +2,8 @@
 //! arguments refused by our own messages, a cell given to `check`, the method list of
 //! `compare`, the help of `evaluate --svg`, `evaluate --blind`, and the generator script.
 
-use crate::common::{shipped, workcell};
-use std::path::PathBuf;
+use crate::common::{shipped, temp_dir_made, workcell};
 use std::process::Command;
-
-fn temp(test: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workcell-msg-{}-{test}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
@@ -102,7 +95,7 @@ fn check_on_a_cell_says_to_solve_it() {
     assert!(err.contains("workcell solve"), "{err}");
     assert!(!err.contains("trajectory"), "{err}");
     // A broken scene is still told what is wrong with it.
-    let scene = temp("broken", "scene.json");
+    let scene = temp_dir_made("msg", "broken").join("scene.json");
     std::fs::write(&scene, r#"{"robots": [{"name": "A", "shape": []}]}"#).unwrap();
     let err = text(&workcell(&["check", scene.to_str().unwrap()]).stderr);
     assert!(
@@ -134,7 +127,7 @@ fn evaluate_help_describes_its_own_picture() {
 
 #[test]
 fn evaluate_blind_replays_the_collision_blind_sequences() {
-    let result = temp("blind", "result.json");
+    let result = temp_dir_made("msg", "blind").join("result.json");
     let o = workcell(&["solve", &shipped("feedback-cell.json"), "--json"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
     std::fs::write(&result, &o.stdout).unwrap();
@@ -153,7 +146,7 @@ fn evaluate_blind_replays_the_collision_blind_sequences() {
         "{blind}"
     );
     // Plain sequences have no blind ones.
-    let plain = temp("blind", "plain.json");
+    let plain = temp_dir_made("msg", "blind").join("plain.json");
     std::fs::write(&plain, solved["sequences"].to_string()).unwrap();
     let o = workcell(&["evaluate", &cell, plain.to_str().unwrap(), "--blind"]);
     assert_eq!(o.status.code(), Some(2));
@@ -167,7 +160,7 @@ fn make_cells_verifies_against_the_checker() {
         eprintln!("python3 not found: cells/make_cells.py not run");
         return;
     }
-    let out = temp("make-cells", "scenes");
+    let out = temp_dir_made("msg", "make-cells").join("scenes");
     let o = Command::new("python3")
         .arg(shipped("make_cells.py"))
         .args(["--checker", env!("CARGO_BIN_EXE_workcell"), "--table"])

@@ -1,15 +1,8 @@
 //! The command line of large cells: `generate --kind cell`, `solve --time-limit`,
 //! `--progress`, `--planning` and the exact flags of `--export-graph`.
 
-use crate::common::workcell;
+use crate::common::{temp_dir_absent, workcell};
 use std::path::{Path, PathBuf};
-
-fn temp_dir(test: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("workcell-cli-scale-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
 
 fn generate(dir: &Path, robots: &str, tasks: &str, fixtures: &str, seed: &str) -> PathBuf {
     let out = workcell(&[
@@ -37,9 +30,9 @@ fn generate(dir: &Path, robots: &str, tasks: &str, fixtures: &str, seed: &str) -
 
 #[test]
 fn generated_cells_are_deterministic_and_solvable() {
-    let dir = temp_dir("generate");
+    let dir = temp_dir_absent("cli-scale", "generate");
     let a = std::fs::read_to_string(generate(&dir, "3", "12", "2", "5")).unwrap();
-    let again = temp_dir("generate-again");
+    let again = temp_dir_absent("cli-scale", "generate-again");
     let b = std::fs::read_to_string(generate(&again, "3", "12", "2", "5")).unwrap();
     assert_eq!(a, b);
     let other = std::fs::read_to_string(generate(&again, "3", "12", "2", "6")).unwrap();
@@ -58,7 +51,7 @@ fn generated_cells_are_deterministic_and_solvable() {
 
 #[test]
 fn impossible_cell_requests_are_refused() {
-    let dir = temp_dir("refused");
+    let dir = temp_dir_absent("cli-scale", "refused");
     let d = dir.to_str().unwrap();
     for args in [
         vec![
@@ -99,7 +92,7 @@ fn impossible_cell_requests_are_refused() {
 
 #[test]
 fn time_limit_progress_and_exported_graph() {
-    let dir = temp_dir("solve");
+    let dir = temp_dir_absent("cli-scale", "solve");
     let cell = generate(&dir, "4", "40", "3", "2");
     let graph = dir.join("graph.json");
     let out = workcell(&[

@@ -1,16 +1,10 @@
 //! `workcell solve` and `workcell evaluate` as a user meets them: exit statuses, the
 //! contract's JSON, the exports, and errors that name the file, the body and the field.
 
-use crate::common::{shipped, workcell};
+use crate::common::{shipped, temp_dir_made, workcell};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn temp(test: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workcell-solve-{}-{test}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
 
 fn json(o: &Output) -> Value {
     serde_json::from_slice(&o.stdout).expect("stdout is JSON")
@@ -23,9 +17,9 @@ fn text(bytes: &[u8]) -> String {
 #[test]
 fn solve_prints_the_contract_json_and_writes_every_export() {
     let (scene, graph, svg) = (
-        temp("exports", "scene.json"),
-        temp("exports", "graph.json"),
-        temp("exports", "cell.svg"),
+        temp_dir_made("solve", "exports").join("scene.json"),
+        temp_dir_made("solve", "exports").join("graph.json"),
+        temp_dir_made("solve", "exports").join("cell.svg"),
     );
     let out = workcell(&[
         "solve",
@@ -89,7 +83,7 @@ fn solve_reports_the_feedback_and_evaluate_rejects_the_blind_schedule() {
     assert_eq!(rounds.len() as u64, result["iterations"].as_u64().unwrap());
 
     // The blind sequences collide: evaluate says so with exit 1 and names the pair.
-    let blind = temp("feedback", "blind.json");
+    let blind = temp_dir_made("solve", "feedback").join("blind.json");
     std::fs::write(&blind, result["blind_sequences"].to_string()).unwrap();
     let out = workcell(&["evaluate", &cell, blind.to_str().unwrap(), "--json"]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stdout));
@@ -104,7 +98,7 @@ fn solve_reports_the_feedback_and_evaluate_rejects_the_blind_schedule() {
     );
 
     // The whole solve result is accepted as a sequences file and reproduces the makespan.
-    let whole = temp("feedback", "result.json");
+    let whole = temp_dir_made("solve", "feedback").join("result.json");
     std::fs::write(&whole, workcell(&["solve", &cell, "--json"]).stdout).unwrap();
     let out = workcell(&["evaluate", &cell, whole.to_str().unwrap(), "--json"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
@@ -164,7 +158,7 @@ fn the_human_summary_lists_robots_rounds_and_stages() {
 
 #[test]
 fn bad_cells_and_sequences_exit_2_naming_file_body_and_field() {
-    let bad = temp("bad", "cell.json");
+    let bad = temp_dir_made("solve", "bad").join("cell.json");
     std::fs::write(
         &bad,
         r#"{"robots": [{"name": "R1", "shape": [[0,0],[1,0],[0,1]], "home": [0, 0],
@@ -183,7 +177,7 @@ fn bad_cells_and_sequences_exit_2_naming_file_body_and_field() {
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains("no/such/cell.json"));
 
-    let seq = temp("bad", "seq.json");
+    let seq = temp_dir_made("solve", "bad").join("seq.json");
     std::fs::write(&seq, r#"{"R1": ["weld-1", "weld-1"]}"#).unwrap();
     let out = workcell(&[
         "evaluate",
@@ -217,7 +211,7 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
                 "home": [{x}, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1.5}}"#
         )
     };
-    let cell = temp("waits", "crossing.json");
+    let cell = temp_dir_made("solve", "waits").join("crossing.json");
     std::fs::write(
         &cell,
         format!(
@@ -238,7 +232,7 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
         !result["waits"].as_array().unwrap().is_empty(),
         "the crossing needs a wait"
     );
-    let mut document = temp("waits", "result.json");
+    let mut document = temp_dir_made("solve", "waits").join("result.json");
     std::fs::write(&document, &solved.stdout).unwrap();
     // Twice: on the solve result, then on evaluate's own output.
     for round in 0..2 {
@@ -250,14 +244,14 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
             text(&out.stdout)
         );
         assert_eq!(json(&out)["makespan"], result["makespan"]);
-        document = temp("waits", &format!("evaluated-{round}.json"));
+        document = temp_dir_made("solve", "waits").join(format!("evaluated-{round}.json"));
         std::fs::write(&document, &out.stdout).unwrap();
     }
 }
 
 #[test]
 fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
-    let dir = temp("legs", "cells");
+    let dir = temp_dir_made("solve", "legs").join("cells");
     let out = workcell(&[
         "generate",
         "--kind",
@@ -292,7 +286,7 @@ fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
         }
     }
     assert!(!kinds.is_empty());
-    let mut document = temp("legs", "result.json");
+    let mut document = temp_dir_made("solve", "legs").join("result.json");
     std::fs::write(&document, &solved.stdout).unwrap();
     for round in 0..2 {
         let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
@@ -304,14 +298,14 @@ fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
         );
         assert_eq!(json(&out)["makespan"], result["makespan"]);
         assert_eq!(json(&out)["legs"], result["legs"]);
-        document = temp("legs", &format!("evaluated-{round}.json"));
+        document = temp_dir_made("solve", "legs").join(format!("evaluated-{round}.json"));
         std::fs::write(&document, &out.stdout).unwrap();
     }
     // A motion run faster than planned would break the limits: refused, naming the field.
     let tampered = |change: &dyn Fn(&mut Value)| {
         let mut doc = result.clone();
         change(&mut doc);
-        let file = temp("legs", "tampered.json");
+        let file = temp_dir_made("solve", "legs").join("tampered.json");
         std::fs::write(&file, doc.to_string()).unwrap();
         workcell(&["evaluate", cell, file.to_str().unwrap()])
     };
@@ -349,14 +343,14 @@ fn edited_cell(test: &str, edit: impl FnOnce(&mut Value)) -> PathBuf {
     let text = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
     let mut cell: Value = serde_json::from_str(&text).unwrap();
     edit(&mut cell);
-    let path = temp(test, "cell.json");
+    let path = temp_dir_made("solve", test).join("cell.json");
     std::fs::write(&path, cell.to_string()).unwrap();
     path
 }
 
 /// Writes a sequences document to a per-test file.
 fn sequences_file(test: &str, doc: &Value) -> PathBuf {
-    let path = temp(test, "sequences.json");
+    let path = temp_dir_made("solve", test).join("sequences.json");
     std::fs::write(&path, doc.to_string()).unwrap();
     path
 }
@@ -468,7 +462,7 @@ fn a_time_axis_too_long_is_blamed_on_what_stretched_it() {
 #[cfg(unix)]
 #[test]
 fn an_export_that_cannot_be_written_whole_leaves_the_previous_file() {
-    let scene = temp("full-disk", "scene.json");
+    let scene = temp_dir_made("solve", "full-disk").join("scene.json");
     let folder = scene.parent().unwrap();
     std::fs::write(&scene, "previous").unwrap();
     let out = Command::new("sh")
@@ -505,7 +499,7 @@ fn an_export_that_cannot_be_written_whole_leaves_the_previous_file() {
 /// however spelled, or another output, is refused before any work (issue 13, item 10).
 #[test]
 fn an_output_path_that_is_an_input_is_refused() {
-    let cell = temp("overwrite", "cell.json");
+    let cell = temp_dir_made("solve", "overwrite").join("cell.json");
     let original = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
     std::fs::write(&cell, &original).unwrap();
     let folder = cell.parent().unwrap();

@@ -1,7 +1,7 @@
 //! What `workcell check` says and how it exits when the answer is not a plain proof: a work
 //! budget spent (exit 3), methods that certify nothing, and scenes f64 cannot check.
 
-use crate::common::workcell;
+use crate::common::{spinning_tip, workcell};
 use std::path::PathBuf;
 use std::process::Output;
 
@@ -22,27 +22,6 @@ fn stderr(o: &Output) -> String {
 }
 
 const SQUARE: &str = "[[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]]";
-
-/// A tip spinning `turns` times past a wall δ·(1 + 10⁻⁹) beyond its reach.
-fn spinning_tip(turns: usize) -> String {
-    let samples: Vec<String> = (0..=4 * turns)
-        .map(|k| {
-            let theta = k as f64 * std::f64::consts::FRAC_PI_2;
-            format!(
-                r#"{{"t": {}, "x": 0, "y": 0, "theta": {theta}}}"#,
-                k as f64 * 0.25
-            )
-        })
-        .collect();
-    let g = 1.0 + 0.001 * (1.0 + 1e-9);
-    format!(
-        r#"{{"delta": 0.001, "robots": [{{"name": "tip", "shape": [[-0.05,-0.01],[1,0],[-0.05,0.01]],
-        "trajectory": [{}]}}], "obstacles": [{{"name": "wall", "shape": [[{g},-5],[{},-5],[{},5],[{g},5]]}}]}}"#,
-        samples.join(","),
-        g + 1.0,
-        g + 1.0
-    )
-}
 
 #[test]
 fn a_spent_work_budget_exits_3_and_says_unresolved() {

@@ -2,7 +2,7 @@
 //! and the parry peer's independent cross-check of the default method on every generated kind.
 
 #[cfg(feature = "cli")]
-use crate::common::workcell;
+use crate::common::{temp_dir_made, workcell};
 #[cfg(feature = "cli")]
 use std::path::{Path, PathBuf};
 use workcell::collision::Method;
@@ -15,12 +15,6 @@ fn cells() -> PathBuf {
 }
 
 #[cfg(feature = "cli")]
-fn temp(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workcell-compare-{}-{test}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 fn method<'c>(c: &'c Comparison, name: &str) -> &'c workcell::compare::MethodSummary {
     c.methods.iter().find(|m| m.method == name).unwrap()
 }
@@ -28,7 +22,7 @@ fn method<'c>(c: &'c Comparison, name: &str) -> &'c workcell::compare::MethodSum
 #[cfg(feature = "cli")]
 #[test]
 fn shipped_scenes_give_json_and_a_chart() {
-    let svg = temp("chart").join("chart.svg");
+    let svg = temp_dir_made("compare", "chart").join("chart.svg");
     let o = workcell(&[
         "compare",
         cells().to_str().unwrap(),
@@ -100,12 +94,12 @@ fn the_table_lists_every_method_asked_for() {
 #[cfg(feature = "cli")]
 #[test]
 fn bad_input_exits_2_naming_the_file() {
-    let dir = temp("bad");
+    let dir = temp_dir_made("compare", "bad");
     std::fs::write(dir.join("broken.json"), "{\"robots\": [}").unwrap();
     let o = workcell(&["compare", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("broken.json"));
-    let empty = temp("empty");
+    let empty = temp_dir_made("compare", "empty");
     let o = workcell(&["compare", empty.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no scene files"));

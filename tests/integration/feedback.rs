@@ -2,27 +2,16 @@
 //! cell solved, the limits kept), each remedy where it is needed, the shipped cells'
 //! documented results, the greedy loop's documented choices, and determinism.
 
+use crate::common::{shipped_cell, solve_with};
 use std::path::{Path, PathBuf};
-use workcell::cell::{load_cell, parse_cell, parse_scene, scene_document, Cell};
+use workcell::cell::{parse_cell, parse_scene, scene_document, Cell};
 use workcell::collision::{check, CheckOptions};
 use workcell::generate::{generate_conflict_cell, ConflictKind};
 use workcell::wcp::{self, Feedback, Remedies, Remedy, SolveOptions, Solved};
 
-fn shipped(name: &str) -> Cell {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("cells")
-        .join(name);
-    load_cell(&path).unwrap().cell
-}
-
 fn conflict_cell(kind: ConflictKind, k: u64) -> Cell {
     let text = generate_conflict_cell(kind, 1, k).to_string();
     parse_cell(&text, &PathBuf::from(kind.name())).unwrap().cell
-}
-
-fn solve_with(cell: &Cell, opts: &SolveOptions) -> Solved {
-    let prepared = wcp::prepare(cell, opts, &()).expect("a usable cell");
-    wcp::solve(cell, &prepared, opts, &()).expect("a usable cell")
 }
 
 fn solve(cell: &Cell) -> Solved {
@@ -262,7 +251,7 @@ fn a_pause_on_the_way_or_a_slower_move_each_separate_a_crossing() {
 
 #[test]
 fn the_feedback_cell_keeps_its_documented_results() {
-    let cell = shipped("feedback-cell.json");
+    let cell = shipped_cell("feedback-cell.json");
     // The search: re-sequenced, then R1 pauses on its way to weld 2.
     let solved = solve(&cell);
     assert_certified_within_limits(&cell, &solved);
@@ -307,7 +296,7 @@ fn shipped_cells_without_conflicts_keep_their_makespans() {
         ("paper-cell.json", "36.165"),
         ("four-robots-cell.json", "32.475"),
     ] {
-        let cell = shipped(name);
+        let cell = shipped_cell(name);
         let solved = solve(&cell);
         assert_eq!(solved.iterations.len(), 1, "{name}");
         assert_eq!(

@@ -1,25 +1,17 @@
 //! `workcell generate`: deterministic files in the scene format, and the kinds whose verdict
 //! is known by construction checked against the checker and an independent dense sampling.
 
-#[cfg(feature = "cli")]
-use crate::common::workcell;
 use crate::common::{exact_distance, place, pose_at, Pt};
+#[cfg(feature = "cli")]
+use crate::common::{temp_dir_absent, workcell};
 use serde_json::Value;
 use std::path::Path;
-#[cfg(feature = "cli")]
-use std::path::PathBuf;
 use workcell::cell::{check_precision, parse_scene, scene_document};
 use workcell::collision::{check, CheckOptions, CheckReport};
 use workcell::generate::{generate_scene, Kind};
 
 /// A fresh, empty per-test folder.
 #[cfg(feature = "cli")]
-fn temp_dir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workcell-gen-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
 /// Scene `k` as the command writes it.
 fn text(kind: Kind, seed: u64, k: u64, robots: usize) -> String {
     let scene = generate_scene(kind, seed, k, robots);
@@ -76,7 +68,10 @@ fn same_arguments_give_the_same_bytes_and_seeds_differ() {
             );
         }
     }
-    let (a, b) = (temp_dir("same-a"), temp_dir("same-b"));
+    let (a, b) = (
+        temp_dir_absent("gen", "same-a"),
+        temp_dir_absent("gen", "same-b"),
+    );
     for dir in [&a, &b] {
         let out = workcell(
             &["generate", "--kind", "pairs", "--seed", "3", "--count", "4"]
@@ -182,7 +177,7 @@ fn hall_has_the_requested_robots_with_100_samples() {
 #[cfg(feature = "cli")]
 #[test]
 fn cli_writes_files_and_prints_them() {
-    let dir = temp_dir("cli").join("nested");
+    let dir = temp_dir_absent("gen", "cli").join("nested");
     let out = workcell(&[
         "generate",
         "--kind",
@@ -208,7 +203,7 @@ fn cli_writes_files_and_prints_them() {
         );
     }
     // Default count: 10.
-    let dir = temp_dir("cli-default");
+    let dir = temp_dir_absent("gen", "cli-default");
     let out = workcell(
         &["generate", "--kind", "near-miss", "--seed", "1", "--out"]
             .into_iter()
@@ -218,7 +213,7 @@ fn cli_writes_files_and_prints_them() {
     assert_eq!(out.status.code(), Some(0));
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 10);
     // `all`: every kind, with --robots for the halls.
-    let dir = temp_dir("cli-all");
+    let dir = temp_dir_absent("gen", "cli-all");
     let out = workcell(&[
         "generate",
         "--kind",
@@ -250,7 +245,7 @@ fn cli_errors_exit_2_and_name_the_path() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("nope"));
     // A folder under a regular file cannot be created, even by root.
-    let dir = temp_dir("unwritable");
+    let dir = temp_dir_absent("gen", "unwritable");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("file"), "").unwrap();
     let bad = dir.join("file").join("out");
@@ -278,7 +273,7 @@ fn cli_errors_exit_2_and_name_the_path() {
 #[cfg(feature = "cli")]
 #[test]
 fn cli_writes_conflict_cells_of_every_family() {
-    let dir = temp_dir("cli-conflict");
+    let dir = temp_dir_absent("gen", "cli-conflict");
     let args = |d: &std::path::Path| {
         workcell(&[
             "generate",
@@ -296,7 +291,7 @@ fn cli_writes_conflict_cells_of_every_family() {
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert_eq!(stdout.lines().count(), 12);
-    let again = temp_dir("cli-conflict-again");
+    let again = temp_dir_absent("gen", "cli-conflict-again");
     assert_eq!(args(&again).status.code(), Some(0));
     for family in workcell::generate::ConflictKind::ALL {
         for k in 0..2 {
@@ -308,7 +303,7 @@ fn cli_writes_conflict_cells_of_every_family() {
         }
     }
     // A cell file is not a scene: `compare` skips `*-cell.json` in folders.
-    let one = temp_dir("cli-conflict-one");
+    let one = temp_dir_absent("gen", "cli-conflict-one");
     let out = workcell(&[
         "generate",
         "--kind",

@@ -1,27 +1,17 @@
 //! `solve` end to end on the shipped cells: the schedules are checked by the checker, every
 //! task is done once by an allowed robot for its duration, and the feedback loop acts.
 
-use std::path::{Path, PathBuf};
+use crate::common::{shipped, solve_with};
+use std::path::Path;
 use workcell::cell::{load_cell, parse_cell, parse_scene, scene_document, Cell};
 use workcell::collision::{check, CheckOptions};
 use workcell::planning::rest_to_rest_time;
 use workcell::wcp::{self, Activity, Feedback, Remedy, SolveOptions, Solved};
 
-fn shipped(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("cells")
-        .join(name)
-}
-
 fn solve(cell: &Cell, seed: u64) -> Solved {
     let mut opts = SolveOptions::default();
     opts.sequencer.seed = seed;
     solve_with(cell, &opts)
-}
-
-fn solve_with(cell: &Cell, opts: &SolveOptions) -> Solved {
-    let prepared = wcp::prepare(cell, opts, &()).expect("a usable cell");
-    wcp::solve(cell, &prepared, opts, &()).expect("a usable cell")
 }
 
 /// Every property the issue asks of a shipped cell's solution.
@@ -89,7 +79,7 @@ fn shipped_cells_get_verified_schedules() {
         "feedback-cell.json",
         "four-robots-cell.json",
     ] {
-        let cell = load_cell(&shipped(name)).unwrap().cell;
+        let cell = load_cell(Path::new(&shipped(name))).unwrap().cell;
         let solved = solve(&cell, 0);
         assert_valid_solution(&cell, &solved);
     }
@@ -97,7 +87,9 @@ fn shipped_cells_get_verified_schedules() {
 
 #[test]
 fn the_hall_cell_scales() {
-    let cell = load_cell(&shipped("hall-cell.json")).unwrap().cell;
+    let cell = load_cell(Path::new(&shipped("hall-cell.json")))
+        .unwrap()
+        .cell;
     assert!(cell.robots.len() >= 12 && cell.tasks.len() >= 120);
     let solved = solve(&cell, 0);
     assert_valid_solution(&cell, &solved);
@@ -105,7 +97,9 @@ fn the_hall_cell_scales() {
 
 #[test]
 fn the_feedback_cell_needs_resequencing_and_ends_collision_free() {
-    let cell = load_cell(&shipped("feedback-cell.json")).unwrap().cell;
+    let cell = load_cell(Path::new(&shipped("feedback-cell.json")))
+        .unwrap()
+        .cell;
     let solved = solve(&cell, 0);
     let first = &solved.iterations[0];
     assert!(
@@ -157,7 +151,9 @@ fn the_feedback_cell_needs_resequencing_and_ends_collision_free() {
 
 #[test]
 fn every_planned_move_is_clear_and_no_faster_than_the_straight_line_bound() {
-    let cell = load_cell(&shipped("four-robots-cell.json")).unwrap().cell;
+    let cell = load_cell(Path::new(&shipped("four-robots-cell.json")))
+        .unwrap()
+        .cell;
     let opts = SolveOptions::default();
     let obstacles = cell.obstacle_bodies();
     for r in 0..cell.robots.len() {
@@ -200,7 +196,9 @@ fn every_planned_move_is_clear_and_no_faster_than_the_straight_line_bound() {
 
 #[test]
 fn the_same_seed_gives_the_same_schedule() {
-    let cell = load_cell(&shipped("four-robots-cell.json")).unwrap().cell;
+    let cell = load_cell(Path::new(&shipped("four-robots-cell.json")))
+        .unwrap()
+        .cell;
     let (a, b) = (solve(&cell, 7), solve(&cell, 7));
     assert_eq!(a.routes, b.routes);
     assert_eq!(a.schedule.makespan, b.schedule.makespan);

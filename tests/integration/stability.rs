@@ -2,6 +2,7 @@
 //! exactly δ, a teleport within one unit in the last place, time stamps near f64's limit,
 //! and coordinates too large for δ.
 
+use crate::common::spinning_tip;
 use std::path::Path;
 use workcell::cell::{check_precision, parse_scene};
 use workcell::collision::{check, CheckOptions, CheckReport, Method};
@@ -130,29 +131,6 @@ fn a_jump_within_a_subnormal_time_step_collides() {
     // The same jump far from B is free.
     let r = run(&text.replace(r#""x": 5, "y": 0"#, r#""x": 5, "y": 50"#));
     assert!(!r.collision && r.certified, "{r:?}");
-}
-
-/// A thin tip of length 1 spinning `turns` times about G, a quarter turn per sample, past
-/// a wall δ·(1 + 10⁻⁹) beyond its reach: free, but the first-order condition proves each
-/// pass only in about 10⁴ pieces.
-fn spinning_tip(turns: usize) -> String {
-    let samples: Vec<String> = (0..=4 * turns)
-        .map(|k| {
-            let theta = k as f64 * std::f64::consts::FRAC_PI_2;
-            format!(
-                r#"{{"t": {}, "x": 0, "y": 0, "theta": {theta}}}"#,
-                k as f64 * 0.25
-            )
-        })
-        .collect();
-    let g = 1.0 + 0.001 * (1.0 + 1e-9);
-    format!(
-        r#"{{"delta": 0.001, "robots": [{{"name": "tip", "shape": [[-0.05,-0.01],[1,0],[-0.05,0.01]],
-        "trajectory": [{}]}}], "obstacles": [{{"name": "wall", "shape": [[{g},-5],[{},-5],[{},5],[{g},5]]}}]}}"#,
-        samples.join(","),
-        g + 1.0,
-        g + 1.0
-    )
 }
 
 #[test]

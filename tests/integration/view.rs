@@ -2,8 +2,8 @@
 //! Gantt chart shows what the result says (lanes, makespan, each round's collision on both
 //! robots' lanes, the remedies' colours), and the animated page fetches nothing.
 
+use crate::common::{shipped, temp_dir_made};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
 use std::process::Command;
 use workcell::view::{text_width, KINDS};
 
@@ -18,20 +18,6 @@ fn workcell(args: &[&str]) -> Value {
         String::from_utf8_lossy(&out.stderr)
     );
     serde_json::from_slice(&out.stdout).unwrap_or(Value::Null)
-}
-
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workcell-view-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn shipped(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("cells")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
 }
 
 /// An attribute's value in one element's text.
@@ -55,7 +41,7 @@ fn texts(svg: &str) -> Vec<(&str, &str)> {
 
 #[test]
 fn the_hall_cells_labels_never_overprint() {
-    let svg = temp("hall.svg");
+    let svg = temp_dir_made("view", "").join("hall.svg");
     workcell(&[
         "solve",
         &shipped("hall-cell.json"),
@@ -92,7 +78,10 @@ fn the_hall_cells_labels_never_overprint() {
 
 #[test]
 fn the_gantt_chart_shows_the_result() {
-    let (gantt, html) = (temp("feedback-gantt.svg"), temp("feedback.html"));
+    let (gantt, html) = (
+        temp_dir_made("view", "").join("feedback-gantt.svg"),
+        temp_dir_made("view", "").join("feedback.html"),
+    );
     let result = workcell(&[
         "solve",
         &shipped("feedback-cell.json"),
@@ -160,9 +149,9 @@ fn the_gantt_chart_shows_the_result() {
 #[test]
 fn evaluate_draws_the_collision_of_the_sequences_given() {
     let (solved, gantt, html) = (
-        temp("solved.json"),
-        temp("blind-gantt.svg"),
-        temp("blind.html"),
+        temp_dir_made("view", "").join("solved.json"),
+        temp_dir_made("view", "").join("blind-gantt.svg"),
+        temp_dir_made("view", "").join("blind.html"),
     );
     let result = workcell(&["solve", &shipped("feedback-cell.json"), "--json"]);
     // The blind sequences collide (round 1 of the solve).

@@ -397,3 +397,57 @@ pub fn shipped(name: &str) -> String {
         .to_string_lossy()
         .into_owned()
 }
+
+/// A thin tip of length 1 spinning `turns` times about G, a quarter turn per sample, past
+/// a wall δ·(1 + 10⁻⁹) beyond its reach: free, but the first-order condition proves each
+/// pass only in about 10⁴ pieces.
+pub fn spinning_tip(turns: usize) -> String {
+    let samples: Vec<String> = (0..=4 * turns)
+        .map(|k| {
+            let theta = k as f64 * std::f64::consts::FRAC_PI_2;
+            format!(
+                r#"{{"t": {}, "x": 0, "y": 0, "theta": {theta}}}"#,
+                k as f64 * 0.25
+            )
+        })
+        .collect();
+    let g = 1.0 + 0.001 * (1.0 + 1e-9);
+    format!(
+        r#"{{"delta": 0.001, "robots": [{{"name": "tip", "shape": [[-0.05,-0.01],[1,0],[-0.05,0.01]],
+        "trajectory": [{}]}}], "obstacles": [{{"name": "wall", "shape": [[{g},-5],[{},-5],[{},5],[{g},5]]}}]}}"#,
+        samples.join(","),
+        g + 1.0,
+        g + 1.0
+    )
+}
+
+/// A cell shipped under `cells/`, read.
+pub fn shipped_cell(name: &str) -> workcell::cell::Cell {
+    workcell::cell::load_cell(shipped(name).as_ref())
+        .unwrap()
+        .cell
+}
+
+/// `prepare` and `solve` with `opts`, on a cell known to be usable.
+pub fn solve_with(
+    cell: &workcell::cell::Cell,
+    opts: &workcell::wcp::SolveOptions,
+) -> workcell::wcp::Solved {
+    let prepared = workcell::wcp::prepare(cell, opts, &()).expect("a usable cell");
+    workcell::wcp::solve(cell, &prepared, opts, &()).expect("a usable cell")
+}
+
+/// A folder of this test run for test `test` of module `module`: made, and kept for the
+/// run (files in it are written over).
+pub fn temp_dir_made(module: &str, test: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("workcell-{module}-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A folder of this test run that does not exist yet (the command under test makes it).
+pub fn temp_dir_absent(module: &str, test: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("workcell-{module}-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
