@@ -152,15 +152,9 @@ fn convex_hull(points: impl Iterator<Item = Vec2>) -> Result<ConvexPolygon, Poly
 /// # Ok::<(), workcell::geometry::PolygonError>(())
 /// ```
 pub fn bounding_box(p: &ConvexPolygon) -> [f64; 4] {
-    p.vertices().iter().fold(
-        [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
-        |[x0, y0, x1, y1], v| [x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y)],
-    )
+    p.vertices().iter().fold(EMPTY_BOX, |[x0, y0, x1, y1], v| {
+        [x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y)]
+    })
 }
 
 /// One side of a part query: a body's convex pieces, their boxes in its frame and its pose.
@@ -271,44 +265,8 @@ pub fn parts_distance(
         boxes_b,
         gaps,
     } = cache;
-    // B's boxes in A's frame: R(−θa)·(R(θb)·corner + pos_b − pos_a).
-    let (sa, ca) = a.theta.sin_cos();
-    let (sr, cr) = (b.theta - a.theta).sin_cos();
-    let d = b.pos - a.pos;
-    let shift = Vec2::new(ca * d.x + sa * d.y, -sa * d.x + ca * d.y);
-    boxes_b.clear();
-    boxes_b.extend(b.boxes.iter().map(|&[x0, y0, x1, y1]| {
-        let corner = |x: f64, y: f64| (cr * x - sr * y + shift.x, sr * x + cr * y + shift.y);
-        let cs = [
-            corner(x0, y0),
-            corner(x1, y0),
-            corner(x1, y1),
-            corner(x0, y1),
-        ];
-        cs.iter().fold(
-            [
-                f64::INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::NEG_INFINITY,
-            ],
-            |[a0, b0, a1, b1], &(x, y)| [a0.min(x), b0.min(y), a1.max(x), b1.max(y)],
-        )
-    }));
-    // Every pair's bound (squared box distance) and the least of them.
-    gaps.clear();
-    let mut first = (f64::INFINITY, 0);
-    for ba in a.boxes {
-        for bb in boxes_b.iter() {
-            let gx = (ba[0] - bb[2]).max(bb[0] - ba[2]).max(0.0);
-            let gy = (ba[1] - bb[3]).max(bb[1] - ba[3]).max(0.0);
-            let g2 = gx * gx + gy * gy;
-            if g2 < first.0 {
-                first = (g2, gaps.len());
-            }
-            gaps.push(g2);
-        }
-    }
+    boxes_in_frame_of(&a, &b, boxes_b);
+    let first = pair_bounds(a.boxes, boxes_b, gaps);
     let mut best = PartsDistance {
         distance: f64::INFINITY,
         parts: (0, 0),
@@ -328,7 +286,7 @@ pub fn parts_distance(
             best.parts = (i, j);
         }
     };
-    walk(first.1, &mut best);
+    walk(first, &mut best);
     // Pairs bounded below `cut` may be nearer than the best found: walk them; the least
     // bound of those skipped above it, if below the best, is the answer.
     let cut = |best: f64| {
@@ -337,7 +295,7 @@ pub fn parts_distance(
     };
     let mut skipped = f64::INFINITY;
     for (k, &gap) in gaps.iter().enumerate() {
-        if k == first.1 || best.distance == 0.0 {
+        if k == first || best.distance == 0.0 {
             continue;
         }
         let c = cut(best.distance);
@@ -349,6 +307,55 @@ pub fn parts_distance(
     }
     best.distance = best.distance.min(skipped.sqrt());
     best
+}
+
+/// B's boxes in A's frame, each the box of its corners moved there:
+/// R(−θa)·(R(θb)·corner + pos_b − pos_a).
+fn boxes_in_frame_of(a: &PartsSide, b: &PartsSide, out: &mut Vec<[f64; 4]>) {
+    let (sa, ca) = a.theta.sin_cos();
+    let (sr, cr) = (b.theta - a.theta).sin_cos();
+    let d = b.pos - a.pos;
+    let shift = Vec2::new(ca * d.x + sa * d.y, -sa * d.x + ca * d.y);
+    out.clear();
+    out.extend(b.boxes.iter().map(|&[x0, y0, x1, y1]| {
+        let corner = |x: f64, y: f64| (cr * x - sr * y + shift.x, sr * x + cr * y + shift.y);
+        let corners = [
+            corner(x0, y0),
+            corner(x1, y0),
+            corner(x1, y1),
+            corner(x0, y1),
+        ];
+        corners.iter().fold(EMPTY_BOX, |[a0, b0, a1, b1], &(x, y)| {
+            [a0.min(x), b0.min(y), a1.max(x), b1.max(y)]
+        })
+    }));
+}
+
+/// The box of no point: every point widens it.
+const EMPTY_BOX: [f64; 4] = [
+    f64::INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+];
+
+/// Every pair's bound, the squared distance between its boxes (A's part `i` and B's `j`
+/// at `i · |B| + j`), into `gaps`; the pair of the least bound (the first on ties).
+fn pair_bounds(boxes_a: &[[f64; 4]], boxes_b: &[[f64; 4]], gaps: &mut Vec<f64>) -> usize {
+    gaps.clear();
+    let mut first = (f64::INFINITY, 0);
+    for ba in boxes_a {
+        for bb in boxes_b {
+            let gx = (ba[0] - bb[2]).max(bb[0] - ba[2]).max(0.0);
+            let gy = (ba[1] - bb[3]).max(bb[1] - ba[3]).max(0.0);
+            let g2 = gx * gx + gy * gy;
+            if g2 < first.0 {
+                first = (g2, gaps.len());
+            }
+            gaps.push(g2);
+        }
+    }
+    first.1
 }
 
 #[cfg(test)]
