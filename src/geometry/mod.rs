@@ -10,6 +10,7 @@
 
 mod brute_force;
 mod feature;
+mod hull;
 mod lin_canny;
 mod outline;
 mod parts;
@@ -19,6 +20,7 @@ mod segment;
 
 pub use brute_force::brute_force_distance;
 pub use feature::{Distance, Feature, FeaturePair};
+pub(crate) use hull::convex_hull;
 pub use lin_canny::{closest_features, WalkTolerances};
 pub use outline::{Outline, OutlineError};
 pub use parts::{

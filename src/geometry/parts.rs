@@ -6,7 +6,7 @@
 //! goes down a level only where the coarser one cannot answer, so a non-convex body far
 //! from everything costs what its hull costs.
 
-use super::{closest_features, ConvexPolygon, FeaturePair, Outline, Posed, Vec2};
+use super::{closest_features, convex_hull, ConvexPolygon, FeaturePair, Outline, Posed, Vec2};
 use super::{OutlineError, PolygonError, WalkTolerances};
 
 /// A body made of convex parts, in the body frame: their union, with the convex hull of
@@ -36,7 +36,7 @@ impl Parts {
     pub fn new(parts: Vec<ConvexPolygon>) -> Result<Parts, PolygonError> {
         let hull = match parts.as_slice() {
             [one] => one.clone(),
-            _ => convex_hull(parts.iter().flat_map(|p| p.vertices().iter().copied()))?,
+            _ => hull_of(parts.iter().flat_map(|p| p.vertices().iter().copied()))?,
         };
         let boxes = parts.iter().map(bounding_box).collect();
         Ok(Parts {
@@ -118,28 +118,12 @@ impl Parts {
     }
 }
 
-/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain, exact turns).
-fn convex_hull(points: impl Iterator<Item = Vec2>) -> Result<ConvexPolygon, PolygonError> {
-    let mut pts: Vec<Vec2> = points.collect();
-    pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
-    pts.dedup();
-    let left = |a: &Vec2, b: &Vec2, c: &Vec2| {
-        let at = |p: &Vec2| robust::Coord { x: p.x, y: p.y };
-        robust::orient2d(at(a), at(b), at(c)) > 0.0
-    };
-    let mut hull: Vec<Vec2> = Vec::with_capacity(pts.len() + 1);
-    for pass in [&pts[..], &pts.iter().rev().copied().collect::<Vec<_>>()[..]] {
-        let floor = hull.len();
-        for p in pass {
-            while hull.len() >= floor + 2 && !left(&hull[hull.len() - 2], &hull[hull.len() - 1], p)
-            {
-                hull.pop();
-            }
-            hull.push(*p);
-        }
-        hull.pop(); // the last point starts the other chain
-    }
-    let corners: Vec<[f64; 2]> = hull.iter().map(|v| [v.x, v.y]).collect();
+/// The convex hull of `points` as a polygon.
+fn hull_of(points: impl Iterator<Item = Vec2>) -> Result<ConvexPolygon, PolygonError> {
+    let corners: Vec<[f64; 2]> = convex_hull(points.collect())
+        .iter()
+        .map(|v| [v.x, v.y])
+        .collect();
     ConvexPolygon::from_vertices(&corners)
 }
 

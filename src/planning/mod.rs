@@ -86,7 +86,6 @@ mod turn_apart;
 mod visibility;
 
 pub use crate::motion::rest_to_rest_time;
-pub(crate) use minkowski::convex_hull;
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;
 

@@ -2,9 +2,9 @@
 //! or the region it sweeps over the conflict window if it moves.
 
 use super::context::{child, earliest, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
+use crate::geometry::convex_hull;
 use crate::geometry::{ConvexPolygon, Posed, Vec2};
 use crate::motion::Pose;
-use crate::planning::convex_hull;
 use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, Leg, Piece};
