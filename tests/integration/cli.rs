@@ -317,6 +317,7 @@ fn shipped_cells_give_their_expected_verdicts() {
         ("spin-hit.json", 1),
         ("near-miss.json", 0),
         ("bad-velocities.json", 1),
+        ("grippers-interleave.json", 0),
     ];
     for (file, code) in expected {
         let o = workcell(&["check", cells.join(file).to_str().unwrap()]);
