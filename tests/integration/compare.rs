@@ -37,8 +37,8 @@ fn shipped_scenes_give_json_and_a_chart() {
         String::from_utf8_lossy(&o.stderr)
     );
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    // The six scenes of cells/, the `*-cell.json` cells aside.
-    assert_eq!(json["scenes"], 6);
+    // The seven scenes of cells/, the `*-cell.json` cells aside.
+    assert_eq!(json["scenes"], 7);
     let methods = json["methods"].as_array().unwrap();
     let names: Vec<&str> = methods
         .iter()
