@@ -14,7 +14,6 @@ fn cells() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cells")
 }
 
-#[cfg(feature = "cli")]
 fn method<'c>(c: &'c Comparison, name: &str) -> &'c workcell::compare::MethodSummary {
     c.methods.iter().find(|m| m.method == name).unwrap()
 }

@@ -10,8 +10,6 @@ use workcell::cell::{check_precision, parse_scene, scene_document};
 use workcell::collision::{check, CheckOptions, CheckReport};
 use workcell::generate::{generate_scene, Kind};
 
-/// A fresh, empty per-test folder.
-#[cfg(feature = "cli")]
 /// Scene `k` as the command writes it.
 fn text(kind: Kind, seed: u64, k: u64, robots: usize) -> String {
     let scene = generate_scene(kind, seed, k, robots);
