@@ -32,14 +32,14 @@ pub struct SolveOptions {
     pub planner: PlannerOptions,
     /// The checker's settings for the schedules.
     pub check: CheckOptions,
-    /// Wall time for the whole solve, from [`prepare`] on: the sequencer then returns the
+    /// Wall time for the whole solve, from [`prepare`](crate::wcp::prepare) on: the sequencer then returns the
     /// best certified plan found so far, and the search its best certified schedule. `None`:
     /// no limit, and the result depends only on the input and the seed.
     pub time_limit: Option<Duration>,
     /// Which moves are planned before sequencing.
     pub planning: Planning,
 }
-/// Which moves [`prepare`] plans and certifies.
+/// Which moves [`prepare`](crate::wcp::prepare) plans and certifies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Planning {
     /// [`Planning::All`] for cells of at most [`AUTO_ALL_MAX_MOVES`] moves, else

@@ -50,7 +50,7 @@ pub struct Conflict {
     pub b: (usize, Step),
 }
 
-/// Knobs of [`solve`].
+/// Knobs of [`solve`](super::solve).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SequencerOptions {
     /// Seed of the random perturbations; the result depends only on it and the input.
@@ -84,12 +84,12 @@ impl Default for SequencerOptions {
     }
 }
 
-/// The sequences found by [`solve`] and their costs.
+/// The sequences found by [`solve`](super::solve) and their costs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
     /// Per robot, its tasks in visiting order.
     pub sequences: Vec<Vec<usize>>,
-    /// Longest route time, as [`Instance::makespan`] computes it.
+    /// Longest route time, as [`Instance::makespan`](super::Instance::makespan) computes it.
     pub makespan: f64,
     /// Sum of the route times.
     pub total: f64,
@@ -101,7 +101,7 @@ pub struct Solution {
     pub optimal: bool,
 }
 
-/// Why [`solve`] or [`Instance::new`] gave up.
+/// Why [`solve`](super::solve) or [`Instance::new`](super::Instance::new) gave up.
 #[derive(thiserror::Error, Debug, Clone, PartialEq)]
 pub enum SequencerError {
     /// No allowed robot has a finite way from its home to the task and back
@@ -117,7 +117,7 @@ pub enum SequencerError {
     /// A conflict names a robot or a node the instance does not have.
     #[error("conflict {index}: {reason}")]
     BadConflict {
-        /// Index of the conflict in the list given to [`solve`].
+        /// Index of the conflict in the list given to [`solve`](super::solve).
         index: usize,
         /// What is wrong with it.
         reason: String,
