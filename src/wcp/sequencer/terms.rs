@@ -17,6 +17,11 @@ pub const fn task_node(t: usize) -> usize {
 }
 
 /// The task at node `n` (`n ≥ 1`; node 0 is home).
+///
+/// ```
+/// use workcell::wcp::sequencer::node_task;
+/// assert_eq!(node_task(1), 0);
+/// ```
 #[inline]
 pub const fn node_task(n: usize) -> usize {
     n - 1
