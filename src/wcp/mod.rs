@@ -30,7 +30,9 @@ pub mod sequencer;
 mod time_axis;
 
 pub use evaluate::{evaluate, Evaluated};
-pub use feedback::{describe, solve, uncertified, Iteration, Remedy, Solved};
+pub use feedback::{
+    describe, solve, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved,
+};
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,
 };

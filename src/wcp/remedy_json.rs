@@ -1,7 +1,7 @@
 //! The remedies of the feedback loop in the result's terms: their names, what each changed
 //! (the JSON of a round) and a sentence for the summary.
 
-use super::feedback::Remedy;
+use super::feedback::{Remedy, RemedyKind};
 use super::legs::{HoldReason, Legs, Piece};
 use super::schedule::{route_nodes, Activity};
 use crate::cell::Cell;
@@ -89,16 +89,16 @@ pub struct StepAsideJson {
 /// ```
 /// use workcell::wcp::{remedy_json::remedy_name, Delay, Remedy};
 /// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
-/// assert_eq!((remedy_name(&Remedy::Resequence), remedy_name(&Remedy::Delay(wait))), ("resequence", "delay"));
+/// assert_eq!((remedy_name(&Remedy::RESEQUENCE), remedy_name(&Remedy::wait(wait))), ("resequence", "delay"));
 /// ```
 pub fn remedy_name(r: &Remedy) -> &'static str {
-    match r {
-        Remedy::Resequence => "resequence",
-        Remedy::Delay(_) => "delay",
-        Remedy::Pause { .. } => "pause",
-        Remedy::Slow { .. } => "slow",
-        Remedy::Detour { .. } => "detour",
-        Remedy::StepAside { .. } => "step-aside",
+    match r.kind {
+        RemedyKind::Resequence => "resequence",
+        RemedyKind::Wait { .. } => "delay",
+        RemedyKind::Pause { .. } => "pause",
+        RemedyKind::Slow { .. } => "slow",
+        RemedyKind::Detour { .. } => "detour",
+        RemedyKind::StepAside { .. } => "step-aside",
     }
 }
 
@@ -114,63 +114,42 @@ fn move_name(cell: &Cell, robot: usize, (from, to): (usize, usize)) -> String {
 /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
 /// // R2 waits 1 s at home before its move to weld-4 (node 4).
 /// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
-/// assert!(change_json(&cell, &Remedy::Resequence).is_none()); // the new sequences say it
-/// let out = serde_json::to_value(change_json(&cell, &Remedy::Delay(wait)))?;
+/// assert!(change_json(&cell, &Remedy::RESEQUENCE).is_none()); // the new sequences say it
+/// let out = serde_json::to_value(change_json(&cell, &Remedy::wait(wait)))?;
 /// assert_eq!(out, json!({"delay": {"robot": "R2", "before": "move home -> weld-4", "duration": 1.0}}));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
-    let name = |robot: usize| cell.robots[robot].name.clone();
-    Some(match r {
-        Remedy::Resequence => return None,
-        Remedy::Delay(d) => ChangeJson::Delay(DelayJson {
-            robot: name(d.robot),
-            before: move_name(cell, d.robot, d.nodes),
-            duration: d.duration,
-        }),
-        Remedy::Pause {
+    let leg = r.on?;
+    let robot = cell.robots[leg.robot].name.clone();
+    let on = move_name(cell, leg.robot, leg.nodes);
+    Some(match &r.kind {
+        RemedyKind::Resequence => return None,
+        RemedyKind::Wait { duration } => ChangeJson::Delay(DelayJson {
             robot,
-            nodes,
-            at,
-            duration,
-            ..
-        } => ChangeJson::Pause(PauseJson {
-            robot: name(*robot),
-            on: move_name(cell, *robot, *nodes),
+            before: on,
+            duration: *duration,
+        }),
+        RemedyKind::Pause { at, duration } => ChangeJson::Pause(PauseJson {
+            robot,
+            on,
             at: [at.x, at.y],
             duration: *duration,
         }),
-        Remedy::Slow {
+        RemedyKind::Slow { factor } => ChangeJson::Slow(SlowJson {
             robot,
-            nodes,
-            factor,
-            ..
-        } => ChangeJson::Slow(SlowJson {
-            robot: name(*robot),
-            on: move_name(cell, *robot, *nodes),
+            on,
             factor: *factor,
         }),
-        Remedy::Detour {
+        RemedyKind::Detour { around, path } => ChangeJson::Detour(DetourJson {
             robot,
-            nodes,
-            around,
-            path,
-            ..
-        } => ChangeJson::Detour(DetourJson {
-            robot: name(*robot),
-            on: move_name(cell, *robot, *nodes),
-            around: name(*around),
+            on,
+            around: cell.robots[*around].name.clone(),
             path: path.iter().map(|p| [p.x, p.y]).collect(),
         }),
-        Remedy::StepAside {
+        RemedyKind::StepAside { park, duration } => ChangeJson::StepAside(StepAsideJson {
             robot,
-            nodes,
-            park,
-            duration,
-            ..
-        } => ChangeJson::StepAside(StepAsideJson {
-            robot: name(*robot),
-            on: move_name(cell, *robot, *nodes),
+            on,
             park: [park.pos.x, park.pos.y, park.theta],
             duration: *duration,
         }),
@@ -184,67 +163,31 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
 /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
 /// // R2 waits 1 s at home before its move to weld-4 (node 4).
 /// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
-/// assert_eq!(remedy_text(&cell, &Remedy::Delay(wait)), "R2 waits 1.000 before its move home -> weld-4");
+/// assert_eq!(remedy_text(&cell, &Remedy::wait(wait)), "R2 waits 1.000 before its move home -> weld-4");
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
 pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
-    let name = |robot: usize| cell.robots[robot].name.as_str();
-    match r {
-        Remedy::Resequence => "re-sequenced".to_owned(),
-        Remedy::Delay(d) => format!(
-            "{} waits {:.3} before its {}",
-            name(d.robot),
-            d.duration,
-            move_name(cell, d.robot, d.nodes)
+    let Some(leg) = r.on else {
+        return "re-sequenced".to_owned();
+    };
+    let who = cell.robots[leg.robot].name.as_str();
+    let on = move_name(cell, leg.robot, leg.nodes);
+    match &r.kind {
+        RemedyKind::Resequence => "re-sequenced".to_owned(),
+        RemedyKind::Wait { duration } => format!("{who} waits {duration:.3} before its {on}"),
+        RemedyKind::Pause { at, duration } => format!(
+            "{who} pauses {duration:.3} at ({:.3}, {:.3}) on its {on}",
+            at.x, at.y
         ),
-        Remedy::Pause {
-            robot,
-            nodes,
-            at,
-            duration,
-            ..
-        } => format!(
-            "{} pauses {duration:.3} at ({:.3}, {:.3}) on its {}",
-            name(*robot),
-            at.x,
-            at.y,
-            move_name(cell, *robot, *nodes)
-        ),
-        Remedy::Slow {
-            robot,
-            nodes,
-            factor,
-            ..
-        } => format!(
-            "{} makes its {} {factor:.3} times slower",
-            name(*robot),
-            move_name(cell, *robot, *nodes)
-        ),
-        Remedy::Detour {
-            robot,
-            nodes,
-            around,
-            path,
-            ..
-        } => format!(
-            "{} goes round {} on its {} ({} waypoints)",
-            name(*robot),
-            name(*around),
-            move_name(cell, *robot, *nodes),
+        RemedyKind::Slow { factor } => format!("{who} makes its {on} {factor:.3} times slower"),
+        RemedyKind::Detour { around, path } => format!(
+            "{who} goes round {} on its {on} ({} waypoints)",
+            cell.robots[*around].name,
             path.len()
         ),
-        Remedy::StepAside {
-            robot,
-            nodes,
-            park,
-            duration,
-            ..
-        } => format!(
-            "{} steps aside to ({:.3}, {:.3}) for {duration:.3} on its {}",
-            name(*robot),
-            park.pos.x,
-            park.pos.y,
-            move_name(cell, *robot, *nodes)
+        RemedyKind::StepAside { park, duration } => format!(
+            "{who} steps aside to ({:.3}, {:.3}) for {duration:.3} on its {on}",
+            park.pos.x, park.pos.y
         ),
     }
 }

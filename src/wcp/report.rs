@@ -248,7 +248,7 @@ pub fn collision_json(cell: &Cell, c: &Collision) -> CollisionJson {
 /// // R2 waits 1 s at home before its move to weld-4 (node 4).
 /// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
 /// let rounds = [
-///     Iteration { makespan: 15.4, collision: None, remedy: Some(Remedy::Delay(wait)) },
+///     Iteration { makespan: 15.4, collision: None, remedy: Some(Remedy::wait(wait)) },
 ///     Iteration { makespan: 15.9, collision: None, remedy: None },
 /// ];
 /// let out = rounds_json(&cell, &rounds);

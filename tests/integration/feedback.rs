@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use workcell::cell::{parse_cell, parse_scene, scene_document, Cell};
 use workcell::collision::{check, CheckOptions};
 use workcell::generate::{generate_conflict_cell, ConflictKind};
-use workcell::wcp::{self, Feedback, Remedies, Remedy, SolveOptions, Solved};
+use workcell::wcp::{self, Feedback, Remedies, Remedy, RemedyKind, SolveOptions, Solved};
 
 fn conflict_cell(kind: ConflictKind, k: u64) -> Cell {
     let text = generate_conflict_cell(kind, 1, k).to_string();
@@ -162,7 +162,8 @@ fn stepping_aside_is_the_only_way_out_of_a_home_in_the_way() {
     assert_certified_within_limits(&cell, &solved);
     assert!(remedies(&solved)
         .iter()
-        .any(|r| matches!(r, Remedy::StepAside { robot: 1, .. })));
+        .any(|r| matches!(r.kind, RemedyKind::StepAside { .. })
+            && r.on.is_some_and(|l| l.robot == 1)));
     // R1 is delayed by nothing: R2 makes way.
     assert_eq!(solved.schedule.makespan, solved.blind_makespan);
     let without = solve_with(&cell, &all_but("step-aside"));
@@ -189,14 +190,8 @@ fn a_detour_goes_round_a_robot_that_is_working() {
     let detours: Vec<_> = remedies(&solved)
         .into_iter()
         .filter(|r| {
-            matches!(
-                r,
-                Remedy::Detour {
-                    robot: 0,
-                    around: 1,
-                    ..
-                }
-            )
+            matches!(r.kind, RemedyKind::Detour { around: 1, .. })
+                && r.on.is_some_and(|l| l.robot == 0)
         })
         .collect();
     // There and back.
@@ -225,7 +220,7 @@ fn robots_pass_side_by_side_in_a_wide_corridor() {
     assert_certified_within_limits(&cell, &solved);
     assert!(remedies(&solved)
         .iter()
-        .any(|r| matches!(r, Remedy::Detour { .. })));
+        .any(|r| matches!(r.kind, RemedyKind::Detour { .. })));
     assert!(solved.schedule.makespan <= solved.blind_makespan * 1.01);
     // One at a time, as in a narrow corridor, costs far more.
     let without = solve_with(&cell, &all_but("detour"));
@@ -239,13 +234,13 @@ fn a_pause_on_the_way_or_a_slower_move_each_separate_a_crossing() {
     assert_certified_within_limits(&cell, &paused);
     assert!(remedies(&paused)
         .iter()
-        .all(|r| matches!(r, Remedy::Pause { .. })));
+        .all(|r| matches!(r.kind, RemedyKind::Pause { .. })));
     assert!(!remedies(&paused).is_empty());
     let slowed = solve_with(&cell, &only(&["slow"]));
     assert_certified_within_limits(&cell, &slowed);
     assert!(remedies(&slowed)
         .iter()
-        .all(|r| matches!(r, Remedy::Slow { factor, .. } if *factor > 1.0)));
+        .all(|r| matches!(r.kind, RemedyKind::Slow { factor } if factor > 1.0)));
     assert!(!remedies(&slowed).is_empty());
 }
 
@@ -262,7 +257,8 @@ fn the_feedback_cell_keeps_its_documented_results() {
     assert!(
         matches!(
             taken[..],
-            [Remedy::Resequence, Remedy::Pause { robot: 0, .. }]
+            [first, Remedy { on: Some(leg), kind: RemedyKind::Pause { .. } }]
+                if *first == Remedy::RESEQUENCE && leg.robot == 0
         ),
         "{taken:?}"
     );
@@ -280,8 +276,9 @@ fn the_feedback_cell_keeps_its_documented_results() {
     assert_eq!(greedy.iterations.len(), 4);
     let taken = remedies(&greedy);
     assert!(
-        matches!(taken[..], [Remedy::Resequence, Remedy::Resequence, Remedy::Delay(d)]
-            if d.robot == 1 && (d.duration - 1.000).abs() < 5e-4),
+        matches!(taken[..], [a, b, Remedy { on: Some(leg), kind: RemedyKind::Wait { duration } }]
+            if *a == Remedy::RESEQUENCE && *b == Remedy::RESEQUENCE
+                && leg.robot == 1 && (duration - 1.000).abs() < 5e-4),
         "{taken:?}"
     );
     // Re-sequencing alone also separates them, at a higher cost.

@@ -158,7 +158,7 @@ fn code_lines(text: &str) -> Vec<(usize, String)> {
 }
 
 /// The module paths a line names after `prefix` (`crate::`, `super::` or a child's `x::`),
-/// a group `{a::b, c}` giving one path per item.
+/// a group `a::{b::C, d}` giving one path per item, nested groups included.
 fn paths_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
     let mut paths = Vec::new();
     let mut rest = code;
@@ -168,30 +168,49 @@ fn paths_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
         if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
             continue; // a longer name that ends with the prefix, or a path inside a path
         }
-        if let Some(group) = rest.strip_prefix('{') {
-            // Items at the group's own depth: `{a::{B, C}, d}` gives `a` and `d`.
-            let (mut depth, mut start) = (0, 0);
-            for (k, c) in group.char_indices() {
-                match c {
-                    '{' => depth += 1,
-                    '}' if depth == 0 => {
-                        paths.push(segments(group[start..k].trim()));
-                        break;
-                    }
-                    '}' => depth -= 1,
-                    ',' if depth == 0 => {
-                        paths.push(segments(group[start..k].trim()));
-                        start = k + 1;
-                    }
-                    _ => {}
-                }
-            }
-        } else {
-            paths.push(segments(rest));
-        }
+        paths.extend(expand(rest));
     }
     paths.retain(|p| !p.is_empty());
     paths
+}
+
+/// The paths of `a::b::{c::D, e}` (what follows a prefix): one per item of a group.
+fn expand(text: &str) -> Vec<Vec<String>> {
+    let head = segments(text);
+    let consumed: usize = head.iter().map(|s| s.len() + 2).sum();
+    let after = text.get(consumed.min(text.len())..).unwrap_or("");
+    let group = if head.is_empty() {
+        text.strip_prefix('{')
+    } else {
+        text.get(consumed.saturating_sub(2)..)
+            .and_then(|t| t.strip_prefix("::{"))
+            .or_else(|| after.strip_prefix('{'))
+    };
+    let Some(group) = group else {
+        return vec![head];
+    };
+    // Items at the group's own depth.
+    let (mut depth, mut start, mut items) = (0, 0, Vec::new());
+    for (k, c) in group.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' if depth == 0 => {
+                items.push(&group[start..k]);
+                break;
+            }
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                items.push(&group[start..k]);
+                start = k + 1;
+            }
+            _ => {}
+        }
+    }
+    items
+        .into_iter()
+        .flat_map(|item| expand(item.trim()))
+        .map(|tail| head.iter().cloned().chain(tail).collect())
+        .collect()
 }
 
 /// The file's code as statements to read: a `use` joined over its lines, with the number of
@@ -470,6 +489,14 @@ fn the_detector_sees_cycles_and_paths() {
     assert_eq!(
         paths_after("use crate::{cell::Cell, wcp::x::Y};", "crate::"),
         [vec!["cell", "Cell"], vec!["wcp", "x", "Y"]]
+    );
+    assert_eq!(
+        paths_after("use crate::wcp::{feedback::{A, b::C}, D};", "crate::"),
+        [
+            vec!["wcp", "feedback", "A"],
+            vec!["wcp", "feedback", "b", "C"],
+            vec!["wcp", "D"]
+        ]
     );
     assert_eq!(
         paths_after("let s = my_crate::x();", "crate::"),

@@ -6,7 +6,7 @@ use std::path::Path;
 use workcell::cell::{load_cell, parse_cell, parse_scene, scene_document, Cell};
 use workcell::collision::{check, CheckOptions};
 use workcell::planning::rest_to_rest_time;
-use workcell::wcp::{self, Activity, Feedback, Remedy, SolveOptions, Solved};
+use workcell::wcp::{self, Activity, Feedback, Remedy, RemedyKind, SolveOptions, Solved};
 
 fn solve(cell: &Cell, seed: u64) -> Solved {
     let mut opts = SolveOptions::default();
@@ -110,7 +110,7 @@ fn the_feedback_cell_needs_resequencing_and_ends_collision_free() {
     assert!(solved
         .iterations
         .iter()
-        .any(|i| i.remedy == Some(Remedy::Resequence)));
+        .any(|i| i.remedy == Some(Remedy::RESEQUENCE)));
     assert!(solved.collision_free);
     assert!(solved.schedule.makespan >= solved.blind_makespan * (1.0 - 1e-12));
     // Evaluating the blind routes finds the same collision.
@@ -262,10 +262,10 @@ fn crossing_robots_with_forced_tasks_are_separated_by_a_delay_or_better() {
         solved.iterations[0].collision.is_some(),
         "the blind schedule collides"
     );
-    assert!(solved
-        .iterations
-        .iter()
-        .any(|i| matches!(i.remedy, Some(Remedy::Delay(_)))));
+    assert!(solved.iterations.iter().any(|i| i
+        .remedy
+        .as_ref()
+        .is_some_and(|r| matches!(r.kind, RemedyKind::Wait { .. }))));
     assert!(solved.schedule.robots.iter().any(|r| r
         .segments
         .iter()

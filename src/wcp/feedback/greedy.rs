@@ -156,7 +156,7 @@ impl Greedy<'_> {
         if resequenced.violations == 0 {
             best = Some(Candidate {
                 makespan: resequenced.makespan,
-                remedy: Remedy::Resequence,
+                remedy: Remedy::RESEQUENCE,
                 routes: resequenced.sequences,
                 delays: Vec::new(),
             });
@@ -188,7 +188,7 @@ impl Greedy<'_> {
             if best.as_ref().is_none_or(|b| makespan < b.makespan) {
                 best = Some(Candidate {
                     makespan,
-                    remedy: Remedy::Delay(delay),
+                    remedy: Remedy::wait(delay),
                     routes: self.routes.clone(),
                     delays: candidate,
                 });

@@ -12,7 +12,7 @@ mod outcome;
 mod remedies;
 mod search;
 
-pub use outcome::{describe, uncertified, Iteration, Remedy, Solved};
+pub use outcome::{describe, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved};
 
 use super::options::{Feedback, SolveOptions};
 use super::prepare::{Prepared, Progress};

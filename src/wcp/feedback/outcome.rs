@@ -11,63 +11,105 @@ use crate::wcp::prepare::StageTimes;
 use crate::wcp::schedule::{Activity, BuildError, Collision, Delay, Schedule};
 use crate::wcp::time_axis::culprit;
 
-/// How one round's collision was removed.
+/// How one round's collision was removed: what was done, and for every kind but a
+/// re-sequencing, to which leg of which robot.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Remedy {
+pub struct Remedy {
+    /// The leg changed; `None` for a re-sequencing, which changes the sequences instead.
+    pub on: Option<RemedyLeg>,
+    /// What was done.
+    pub kind: RemedyKind,
+}
+
+/// The leg a remedy changes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RemedyLeg {
+    /// The robot.
+    pub robot: usize,
+    /// The leg (move of its route, 0 out of home).
+    pub leg: usize,
+    /// The leg's nodes.
+    pub nodes: (usize, usize),
+}
+
+/// What a remedy does.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RemedyKind {
     /// The sequencer re-planned with the colliding pair of steps forbidden.
     Resequence,
-    /// A robot waits at a node before one of its moves.
-    Delay(Delay),
-    /// A robot stops at a point of a move's path and waits there.
+    /// The robot waits at the leg's start node before its move.
+    Wait {
+        /// How long.
+        duration: f64,
+    },
+    /// The robot stops at a point of the leg's path and waits there.
     Pause {
-        /// The robot.
-        robot: usize,
-        /// The leg (move of its route) that pauses.
-        leg: usize,
-        /// The leg's nodes.
-        nodes: (usize, usize),
         /// Where it stops.
         at: Vec2,
         /// How long it waits there.
         duration: f64,
     },
-    /// A robot makes a move slower.
+    /// The robot makes the leg's move slower.
     Slow {
-        /// The robot.
-        robot: usize,
-        /// The leg that is slowed down.
-        leg: usize,
-        /// The leg's nodes.
-        nodes: (usize, usize),
         /// How many times slower than planned.
         factor: f64,
     },
-    /// A robot makes a move by another way, around another robot.
+    /// The robot makes the leg's move by another way, around another robot.
     Detour {
-        /// The robot.
-        robot: usize,
-        /// The leg re-planned.
-        leg: usize,
-        /// The leg's nodes.
-        nodes: (usize, usize),
         /// The robot gone around.
         around: usize,
         /// The new path of G.
         path: Vec<Vec2>,
     },
-    /// A robot steps aside to a parking pose, waits there and goes on.
+    /// The robot steps aside to a parking pose, waits there and goes on.
     StepAside {
-        /// The robot.
-        robot: usize,
-        /// The leg that goes by way of the parking pose.
-        leg: usize,
-        /// The leg's nodes.
-        nodes: (usize, usize),
         /// The parking pose.
         park: Pose,
         /// How long it waits there.
         duration: f64,
     },
+}
+
+impl Remedy {
+    /// A re-sequencing.
+    pub const RESEQUENCE: Remedy = Remedy {
+        on: None,
+        kind: RemedyKind::Resequence,
+    };
+
+    /// A remedy of `kind` on leg `leg` of `robot`, between `nodes`.
+    ///
+    /// ```
+    /// use workcell::wcp::{Delay, Remedy, RemedyKind};
+    /// let pause = Remedy::on(1, 0, (0, 4), RemedyKind::Slow { factor: 2.0 });
+    /// assert_eq!(pause.on.map(|l| l.robot), Some(1));
+    /// let wait = Delay { robot: 1, before_move: 0, nodes: (0, 4), duration: 1.0 };
+    /// assert_eq!(Remedy::wait(wait), Remedy::on(1, 0, (0, 4), RemedyKind::Wait { duration: 1.0 }));
+    /// ```
+    pub fn on(robot: usize, leg: usize, nodes: (usize, usize), kind: RemedyKind) -> Remedy {
+        Remedy {
+            on: Some(RemedyLeg { robot, leg, nodes }),
+            kind,
+        }
+    }
+
+    /// A wait at a node as a remedy.
+    ///
+    /// ```
+    /// use workcell::wcp::{remedy_json::remedy_name, Delay, Remedy};
+    /// let wait = Remedy::wait(Delay { robot: 0, before_move: 2, nodes: (3, 1), duration: 0.5 });
+    /// assert_eq!((remedy_name(&wait), wait.on.unwrap().leg), ("delay", 2));
+    /// ```
+    pub fn wait(d: Delay) -> Remedy {
+        Remedy::on(
+            d.robot,
+            d.before_move,
+            d.nodes,
+            RemedyKind::Wait {
+                duration: d.duration,
+            },
+        )
+    }
 }
 
 /// One round of the loop.

@@ -485,7 +485,7 @@ impl Search<'_> {
                 robots: Vec::new(),
                 makespan: blind_makespan,
                 parent: Some(id),
-                remedy: Some(Remedy::Resequence),
+                remedy: Some(Remedy::RESEQUENCE),
                 depth,
                 discrepancies: discrepancies + 1,
                 deviated_at: depth,

@@ -6,7 +6,7 @@ use crate::geometry::convex_hull;
 use crate::geometry::{ConvexPolygon, Posed, Vec2};
 use crate::motion::Pose;
 use crate::wcp::feedback::clearing::clears;
-use crate::wcp::feedback::Remedy;
+use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, Leg, Piece};
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
@@ -118,12 +118,10 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     });
     // On ties the first window tried.
     let (motion, new, s) = earliest(tried)?;
-    let remedy = Remedy::Detour {
-        robot: side.x,
-        leg: m,
-        nodes: (from, to),
+    let kind = RemedyKind::Detour {
         around: side.y,
         path: motion.path.clone(),
     };
+    let remedy = Remedy::on(side.x, m, (from, to), kind);
     Some(child(view, side.x, m, new, s, remedy))
 }

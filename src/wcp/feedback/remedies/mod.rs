@@ -16,7 +16,7 @@
 //! decides among the survivors by makespan. Motions are planned by the planner and
 //! certified clear of the fixtures by the checker, so the limits and the clearance hold.
 
-use super::Remedy;
+use super::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, Leg};
 use crate::wcp::schedule::{Activity, Collision};
 use rayon::prelude::*;
@@ -97,11 +97,6 @@ fn wait(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         })
     })?;
     let nodes = leg_nodes(view, side.x, m);
-    let remedy = Remedy::Delay(crate::wcp::schedule::Delay {
-        robot: side.x,
-        before_move: m,
-        nodes,
-        duration: d,
-    });
+    let remedy = Remedy::on(side.x, m, nodes, RemedyKind::Wait { duration: d });
     Some(child(view, side.x, m, new, s, remedy))
 }

@@ -7,7 +7,7 @@ use super::context::{
 };
 use crate::geometry::Vec2;
 use crate::planning::Primitive;
-use crate::wcp::feedback::Remedy;
+use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
 use crate::wcp::moves::certify;
 use crate::wcp::schedule::{Activity, Segment};
@@ -124,13 +124,11 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     });
     // On ties the stop nearest the contact (tried first).
     let (d, stop, new, s) = earliest(tried)?;
-    let remedy = Remedy::Pause {
-        robot: side.x,
-        leg: m,
-        nodes: leg_nodes(view, side.x, m),
+    let kind = RemedyKind::Pause {
         at: stop,
         duration: d,
     };
+    let remedy = Remedy::on(side.x, m, leg_nodes(view, side.x, m), kind);
     Some(child(view, side.x, m, new, s, remedy))
 }
 
@@ -172,11 +170,9 @@ pub(super) fn slow(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             ..old.clone()
         })
     })?;
-    let remedy = Remedy::Slow {
-        robot: side.x,
-        leg: m,
-        nodes: leg_nodes(view, side.x, m),
+    let kind = RemedyKind::Slow {
         factor: 1.0 + extra,
     };
+    let remedy = Remedy::on(side.x, m, leg_nodes(view, side.x, m), kind);
     Some(child(view, side.x, m, new, s, remedy))
 }

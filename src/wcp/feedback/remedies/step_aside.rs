@@ -7,7 +7,7 @@ use super::context::{
 use crate::collision::Body;
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::{Motion, Pose};
-use crate::wcp::feedback::Remedy;
+use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
@@ -136,12 +136,11 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             Some((s.end, (p, d, new, s)))
         });
     let (park, d, new, s) = earliest(tried)?;
-    let remedy = Remedy::StepAside {
-        robot: x,
-        leg: m,
-        nodes: (from, to),
-        park,
-        duration: d,
-    };
+    let remedy = Remedy::on(
+        x,
+        m,
+        (from, to),
+        RemedyKind::StepAside { park, duration: d },
+    );
     Some(child(view, x, m, new, s, remedy))
 }
