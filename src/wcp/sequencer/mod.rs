@@ -49,6 +49,7 @@ mod instance;
 mod lazy_costs;
 mod local_search;
 mod model;
+mod offers;
 mod plan;
 mod terms;
 

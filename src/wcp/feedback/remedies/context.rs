@@ -5,26 +5,20 @@
 use crate::cell::Cell;
 use crate::geometry::ConvexPolygon;
 use crate::motion::Pose;
-use crate::planning::{plan_move, time_primitives, PlannedMove, Primitive, RobotLimits};
+use crate::planning::{PlannedMove, Primitive};
 use crate::wcp::feedback::clearing::{clears, least};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
 use crate::wcp::moves::MoveStore;
-use crate::wcp::moves::{certify, limits};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::schedule::{route_nodes, RobotSchedule, Segment};
-use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 /// What the remedies read: the cell, the moves, the options, and plans made so far.
 pub(crate) struct Ctx<'a> {
     pub cell: &'a Cell,
     pub moves: &'a MoveStore,
     pub opts: &'a SolveOptions,
-    fixtures: Vec<ConvexPolygon>,
-    /// Motions planned for remedies, by robot, end poses and extra obstacles: the same
-    /// detour or way to a parking pose is planned once for the whole search.
-    plans: Mutex<HashMap<Vec<u64>, Option<Arc<PlannedMove>>>>,
 }
 
 /// The schedule a remedy changes: routes, legs and every robot's timed plan.
@@ -44,33 +38,16 @@ pub(crate) struct Child {
 
 impl<'a> Ctx<'a> {
     pub fn new(cell: &'a Cell, moves: &'a MoveStore, opts: &'a SolveOptions) -> Self {
-        Ctx {
-            cell,
-            moves,
-            opts,
-            fixtures: cell.obstacles.iter().map(|o| o.shape.clone()).collect(),
-            plans: Mutex::new(HashMap::new()),
-        }
-    }
-
-    pub(super) fn limits(&self, r: usize) -> RobotLimits {
-        limits(&self.cell.robots[r])
+        Ctx { cell, moves, opts }
     }
 
     /// Times primitives for robot `r` as the planner would.
     pub(super) fn timed(&self, r: usize, primitives: &[Primitive]) -> Arc<PlannedMove> {
-        let radius = self.cell.robots[r].shape.radius();
-        let per_phase = self.moves.planner().samples_per_phase;
-        Arc::new(time_primitives(
-            radius,
-            &self.limits(r),
-            primitives,
-            per_phase,
-        ))
+        self.moves.timed(r, primitives)
     }
 
     /// Robot `r`'s fastest move from `from` to `to` around the fixtures and `extra`,
-    /// certified clear of the fixtures; `None` if there is none.
+    /// certified clear of the fixtures; `None` if there is none (see [`MoveStore::between`]).
     pub(super) fn plan(
         &self,
         r: usize,
@@ -78,45 +55,7 @@ impl<'a> Ctx<'a> {
         to: Pose,
         extra: &[ConvexPolygon],
     ) -> Option<Arc<PlannedMove>> {
-        let mut key = vec![r as u64];
-        for p in [from, to] {
-            key.extend([p.pos.x, p.pos.y, p.theta].map(f64::to_bits));
-        }
-        for o in extra {
-            key.push(o.len() as u64);
-            key.extend(
-                o.vertices()
-                    .iter()
-                    .flat_map(|v| [v.x.to_bits(), v.y.to_bits()]),
-            );
-        }
-        if let Some(known) = self.lock().get(&key) {
-            return known.clone();
-        }
-        let robot = &self.cell.robots[r];
-        let mut obstacles = self.fixtures.clone();
-        obstacles.extend_from_slice(extra);
-        let planner = self.moves.planner();
-        let planned = plan_move(
-            &robot.shape,
-            &self.limits(r),
-            &obstacles,
-            self.cell.delta,
-            from,
-            to,
-            planner,
-        )
-        .ok()
-        .filter(|m| certify(self.cell, r, &m.samples, self.moves.obstacles()).is_ok())
-        // Timed again from its primitives, as `evaluate` will time it.
-        .map(|m| self.timed(r, &m.primitives));
-        self.lock().entry(key).or_insert(planned).clone()
-    }
-
-    pub(super) fn lock(
-        &self,
-    ) -> std::sync::MutexGuard<'_, HashMap<Vec<u64>, Option<Arc<PlannedMove>>>> {
-        self.plans.lock().unwrap_or_else(|e| e.into_inner())
+        self.moves.between(r, from, to, extra)
     }
 
     /// Robot `x`'s schedule with leg `m` replaced; `None` if it cannot be timed.

@@ -1,299 +1,19 @@
-//! Every move a robot may make, planned and then certified obstacle-free by the checker, on
-//! demand: [`MoveStore`] plans and certifies each move once, whoever asks first, and keeps it
-//! for every later use (the sequencer, the schedules, the feedback loop's remedies).
-//! [`bounds`] gives each move's admissible lower bound without planning it.
-//!
-//! Node indices are those of the sequencer: for each robot, 0 is its home and `1 + t` is
-//! task `t`. A move and its reverse visit the same poses (the motion model is symmetric in
-//! time), so one plan and one certificate serve both directions.
+//! [`MoveStore`]: each move of the cell planned and certified once, whoever asks first; and
+//! the motions the feedback loop's remedies ask for between any two poses, planned once too.
 
-use super::sequencer::{node_task, task_node};
-use super::sequencer::{BoundLimits, Bounds};
-use crate::cell::{Cell, CellRobot};
-use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
+use super::{
+    bounding_box, boxes_within, certify, limits, node_pose, plan_only, MoveFailure, NEAR_SLACK,
+};
+use crate::cell::Cell;
+use crate::collision::Body;
 use crate::geometry::{ConvexPolygon, Vec2};
-use crate::motion::{Pose, Sample, Trajectory};
-use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
+use crate::motion::{Pose, Sample};
+use crate::planning::{plan_move, time_primitives, PlannedMove, PlannerOptions, Primitive};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::fmt;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
-
-/// Why a robot has no move between two nodes.
-#[derive(Clone, Debug, PartialEq)]
-pub enum MoveFailure {
-    /// The planner found no obstacle-free path.
-    Plan(PlanError),
-    /// An end of the move is too close to an obstacle for the planner's clearance, swept
-    /// over the move's rotation, and turning apart found no way either.
-    Blocked {
-        /// `"start"` or `"goal"`.
-        end: &'static str,
-        /// The obstacle.
-        obstacle: String,
-    },
-    /// The checker found the planned move within δ of an obstacle (a planner defect, kept
-    /// out of every schedule).
-    Collides {
-        /// Time into the move of the first contact.
-        time: f64,
-        /// The obstacle touched.
-        obstacle: String,
-    },
-    /// The checker could neither certify nor refute the move (it grazes δ).
-    NotCertified,
-}
-
-impl fmt::Display for MoveFailure {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            MoveFailure::Plan(e) => write!(f, "{e}"),
-            MoveFailure::Blocked { end, obstacle } => write!(
-                f,
-                "at the {end} pose the robot cannot turn as the move requires without coming \
-                 closer than the planning clearance (delta + 2%) to obstacle \"{obstacle}\", \
-                 and no turning point nearby helps"
-            ),
-            MoveFailure::Collides { time, obstacle } => write!(
-                f,
-                "the planned move comes within delta of obstacle \"{obstacle}\" at t = {time:.6} \
-                 (refused by the checker)"
-            ),
-            MoveFailure::NotCertified => {
-                write!(
-                    f,
-                    "the checker cannot certify the planned move: it grazes delta"
-                )
-            }
-        }
-    }
-}
-
-/// The pose of node `node` for robot `r`: its home for 0, task `node - 1` otherwise.
-///
-/// ```
-/// use workcell::wcp::node_pose;
-/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-/// assert_eq!(node_pose(&cell, 1, 0), cell.robots[1].home);
-/// assert_eq!(node_pose(&cell, 1, 3), cell.tasks[2].at);
-/// # Ok::<(), workcell::cell::InputError>(())
-/// ```
-pub fn node_pose(cell: &Cell, r: usize, node: usize) -> Pose {
-    match node {
-        0 => cell.robots[r].home,
-        n => cell.tasks[node_task(n)].at,
-    }
-}
-
-/// The name of node `node` for robot `r`: the robot's name for its home, else the task's.
-///
-/// ```
-/// use workcell::wcp::node_name;
-/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-/// assert_eq!((node_name(&cell, 1, 0), node_name(&cell, 1, 3)), ("R2", "weld-3"));
-/// # Ok::<(), workcell::cell::InputError>(())
-/// ```
-pub fn node_name(cell: &Cell, r: usize, node: usize) -> &str {
-    match node {
-        0 => &cell.robots[r].name,
-        n => &cell.tasks[node_task(n)].name,
-    }
-}
-
-/// The nodes robot `r` may visit: its home, then its allowed tasks in file order.
-///
-/// ```
-/// use workcell::cell::parse_cell;
-/// use workcell::wcp::robot_nodes;
-/// let text = r#"{"delta": 0.01,
-///   "robots": [{"name": "R1", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
-///               "home": [0, 0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1},
-///              {"name": "R2", "shape": [[-0.5,-0.5],[0.5,-0.5],[0.5,0.5],[-0.5,0.5]],
-///               "home": [9, 0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}],
-///   "tasks": [{"name": "a", "at": [3, 0, 0], "duration": 1, "robots": ["R1"]},
-///             {"name": "b", "at": [6, 0, 0], "duration": 1}]}"#;
-/// let cell = parse_cell(text, "c.json".as_ref())?.cell;
-/// assert_eq!(robot_nodes(&cell, 0), [0, 1, 2]); // home, a, b
-/// assert_eq!(robot_nodes(&cell, 1), [0, 2]); // R2 may not do a
-/// # Ok::<(), workcell::cell::InputError>(())
-/// ```
-pub fn robot_nodes(cell: &Cell, r: usize) -> Vec<usize> {
-    let tasks = cell.tasks.iter().enumerate();
-    std::iter::once(0)
-        .chain(
-            tasks
-                .filter(|(_, t)| t.robots.contains(&r))
-                .map(|(k, _)| task_node(k)),
-        )
-        .collect()
-}
-
-/// The planner's limits of a robot of the cell.
-pub(crate) fn limits(robot: &CellRobot) -> RobotLimits {
-    RobotLimits {
-        max_speed: robot.max_speed,
-        max_accel: robot.max_accel,
-        max_turn_rate: robot.max_turn_rate,
-    }
-}
-
-/// Plans robot `r`'s move between two nodes and has the checker certify it against every
-/// obstacle. The planner is deterministic: planning the same move again gives the same one.
-///
-/// ```
-/// use workcell::planning::PlannerOptions;
-/// use workcell::wcp::{certified_move, node_pose};
-/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-/// // R1 from its home (node 0) to weld-1 (node 1), certified clear of the fixture.
-/// let m = certified_move(&cell, 0, 0, 1, &PlannerOptions::default(), &cell.obstacle_bodies()).unwrap();
-/// assert_eq!(m.samples.last().unwrap().pos, node_pose(&cell, 0, 1).pos);
-/// assert!(m.duration > 0.0);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn certified_move(
-    cell: &Cell,
-    r: usize,
-    from: usize,
-    to: usize,
-    planner: &PlannerOptions,
-    obstacles: &[Body],
-) -> Result<PlannedMove, MoveFailure> {
-    let shapes: Vec<_> = cell.obstacles.iter().map(|o| o.shape.clone()).collect();
-    plan_and_certify(cell, r, from, to, planner, &shapes, obstacles)
-}
-
-fn plan_and_certify(
-    cell: &Cell,
-    r: usize,
-    from: usize,
-    to: usize,
-    planner: &PlannerOptions,
-    shapes: &[ConvexPolygon],
-    obstacles: &[Body],
-) -> Result<PlannedMove, MoveFailure> {
-    let planned = plan_only(cell, r, from, to, planner, shapes)?;
-    certify(cell, r, &planned.samples, obstacles)?;
-    Ok(planned)
-}
-
-/// The planner's move among `shapes` (every obstacle of the cell, in order), not certified.
-fn plan_only(
-    cell: &Cell,
-    r: usize,
-    from: usize,
-    to: usize,
-    planner: &PlannerOptions,
-    shapes: &[ConvexPolygon],
-) -> Result<PlannedMove, MoveFailure> {
-    let robot = &cell.robots[r];
-    let (a, b) = (node_pose(cell, r, from), node_pose(cell, r, to));
-    plan_move(
-        &robot.shape,
-        &limits(robot),
-        shapes,
-        cell.delta,
-        a,
-        b,
-        planner,
-    )
-    .map_err(|e| match e {
-        PlanError::StartBlocked { obstacle } => MoveFailure::Blocked {
-            end: "start",
-            obstacle: cell.obstacles[obstacle].name.clone(),
-        },
-        PlanError::GoalBlocked { obstacle } => MoveFailure::Blocked {
-            end: "goal",
-            obstacle: cell.obstacles[obstacle].name.clone(),
-        },
-        other => MoveFailure::Plan(other),
-    })
-}
-
-/// Relative slack on the distances within which an obstacle counts as near a move.
-const NEAR_SLACK: f64 = 1.05;
-
-/// The smallest box holding the points.
-fn bounding_box(points: &[Vec2]) -> (Vec2, Vec2) {
-    points.iter().fold(
-        (Vec2::repeat(f64::INFINITY), Vec2::repeat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.inf(p), hi.sup(p)),
-    )
-}
-
-/// Whether two boxes come within `reach` of each other (on each axis).
-fn boxes_within(a: &(Vec2, Vec2), b: &(Vec2, Vec2), reach: f64) -> bool {
-    a.0.x <= b.1.x + reach
-        && b.0.x <= a.1.x + reach
-        && a.0.y <= b.1.y + reach
-        && b.0.y <= a.1.y + reach
-}
-
-/// The checker's verdict on one robot's samples against the obstacles.
-pub(crate) fn certify(
-    cell: &Cell,
-    r: usize,
-    samples: &[Sample],
-    obstacles: &[Body],
-) -> Result<(), MoveFailure> {
-    if obstacles.is_empty() {
-        return Ok(());
-    }
-    let robot = &cell.robots[r];
-    let trajectory = Trajectory::new(samples.to_vec())
-        .expect("the planner emits finite samples at increasing times");
-    let mut bodies = Vec::with_capacity(obstacles.len() + 1);
-    bodies.push(Body::robot(
-        robot.name.clone(),
-        robot.shape.clone(),
-        trajectory,
-    ));
-    bodies.extend_from_slice(obstacles);
-    let report = check(
-        &Scene {
-            delta: cell.delta,
-            bodies,
-        },
-        &CheckOptions::default(),
-    );
-    match report.verdict() {
-        Verdict::Contact { contact: c, .. } => Err(MoveFailure::Collides {
-            time: c.time,
-            obstacle: c.bodies[1].clone(),
-        }),
-        verdict if verdict.is_certified_free() => Ok(()),
-        _ => Err(MoveFailure::NotCertified),
-    }
-}
-
-/// The admissible lower bound of every move of the cell (see [`Bounds`]).
-///
-/// ```
-/// use workcell::planning::PlannerOptions;
-/// use workcell::wcp::{bounds, MoveStore};
-/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-/// let (lower, store) = (bounds(&cell), MoveStore::new(&cell, &PlannerOptions::default()));
-/// // Never longer than the certified move: R2 from home around the fixture to weld-1.
-/// assert!(lower.bound(1, 0, 1) <= store.duration(1, 0, 1).unwrap());
-/// assert!(lower.bound(1, 0, 1) > 0.0);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn bounds(cell: &Cell) -> Bounds {
-    let pose = |p: &Pose| (p.pos, p.theta);
-    Bounds::new(
-        cell.robots
-            .iter()
-            .map(|r| BoundLimits {
-                max_speed: r.max_speed,
-                max_accel: r.max_accel,
-                max_angular_accel: r.max_accel / r.shape.radius(),
-                max_turn_rate: r.max_turn_rate,
-            })
-            .collect(),
-        cell.robots.iter().map(|r| pose(&r.home)).collect(),
-        cell.tasks.iter().map(|t| pose(&t.at)).collect(),
-    )
-}
 
 /// Independent locks over the store, so that planning threads seldom wait for each other.
 const SHARDS: usize = 64;
@@ -321,6 +41,9 @@ pub struct MoveStore {
     boxes: Vec<(Vec2, Vec2)>,
     shards: Vec<Mutex<Shard>>,
     planned: AtomicUsize,
+    /// Motions between any two poses around extra obstacles (the remedies' detours and
+    /// ways to a parking pose), keyed by robot, end poses and extra obstacles' bits.
+    between: Mutex<HashMap<Vec<u64>, Option<Arc<PlannedMove>>>>,
 }
 
 impl fmt::Debug for MoveStore {
@@ -358,6 +81,7 @@ impl MoveStore {
                 .collect(),
             shards: (0..SHARDS).map(|_| Mutex::new(HashMap::new())).collect(),
             planned: AtomicUsize::new(0),
+            between: Mutex::new(HashMap::new()),
         }
     }
 
@@ -524,6 +248,67 @@ impl MoveStore {
                 d
             })
             .collect()
+    }
+
+    /// Robot `r`'s fastest move from pose `from` to pose `to` around the fixtures and
+    /// `extra`, certified clear of the fixtures and timed again from its primitives (as
+    /// `evaluate` times it); `None` if there is none. Planned once per robot, poses and
+    /// extra obstacles, like the moves between nodes.
+    pub(crate) fn between(
+        &self,
+        r: usize,
+        from: Pose,
+        to: Pose,
+        extra: &[ConvexPolygon],
+    ) -> Option<Arc<PlannedMove>> {
+        let mut key = vec![r as u64];
+        for p in [from, to] {
+            key.extend([p.pos.x, p.pos.y, p.theta].map(f64::to_bits));
+        }
+        for o in extra {
+            key.push(o.len() as u64);
+            key.extend(
+                o.vertices()
+                    .iter()
+                    .flat_map(|v| [v.x.to_bits(), v.y.to_bits()]),
+            );
+        }
+        if let Some(known) = self.lock_between().get(&key) {
+            return known.clone();
+        }
+        let robot = &self.cell.robots[r];
+        let mut obstacles = self.shapes.clone();
+        obstacles.extend_from_slice(extra);
+        let planned = plan_move(
+            &robot.shape,
+            &limits(robot),
+            &obstacles,
+            self.cell.delta,
+            from,
+            to,
+            &self.planner,
+        )
+        .ok()
+        .filter(|m| certify(&self.cell, r, &m.samples, &self.obstacles).is_ok())
+        .map(|m| self.timed(r, &m.primitives));
+        self.lock_between().entry(key).or_insert(planned).clone()
+    }
+
+    fn lock_between(
+        &self,
+    ) -> std::sync::MutexGuard<'_, HashMap<Vec<u64>, Option<Arc<PlannedMove>>>> {
+        self.between.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Times primitives for robot `r` as the planner would.
+    pub(crate) fn timed(&self, r: usize, primitives: &[Primitive]) -> Arc<PlannedMove> {
+        let robot = &self.cell.robots[r];
+        Arc::new(time_primitives(
+            robot.shape.radius(),
+            &limits(robot),
+            primitives,
+            self.planner.samples_per_phase,
+        ))
     }
 
     /// Moves planned so far (one per robot and unordered pair of nodes).
