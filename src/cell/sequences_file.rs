@@ -158,6 +158,50 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
     } else {
         ("", top.clone())
     };
+    let (routes, done_by) = routes(&robots, prefix, file, cell)?;
+    if let Some(t) = done_by.iter().position(Option::is_none) {
+        let name = &cell.tasks[t].name;
+        let reason =
+            format!("task \"{name}\" is in no robot's sequence: every task must be done once");
+        let field = if whole { key } else { "(every robot's list)" };
+        return Err(err(Some(name), field, reason));
+    }
+    let waits = match find("waits")?.filter(|_| whole && !blind) {
+        Some(list) if list.get() != "null" => waits(list, file, cell, &routes)?,
+        _ => Vec::new(),
+    };
+    // Changed moves are few (one per remedy): read as a tree.
+    let legs = match find("legs")?.filter(|_| whole && !blind) {
+        Some(list) if list.get() != "null" => {
+            let list: serde_json::Value = serde_json::from_str(list.get())
+                .map_err(|e| err(None, "legs", format!("not valid JSON: {e}")))?;
+            super::parse_legs(&list, file, cell, &routes)?
+        }
+        _ => Vec::new(),
+    };
+    Ok(Sequences {
+        routes,
+        waits,
+        legs,
+    })
+}
+
+/// Robots' names with their raw lists, in file order.
+type NamedLists<'t> = [(String, &'t RawValue)];
+
+/// Each robot's route from its list of task names (`robots`: name to raw list, `prefix` the
+/// lists' field), and for each task the field that names it (none: no list does). A robot
+/// listed twice, an unknown robot or task, a task the robot may not do, or one listed twice
+/// is refused.
+fn routes(
+    robots: &NamedLists,
+    prefix: &str,
+    file: &Path,
+    cell: &Cell,
+) -> Result<(Vec<Vec<usize>>, Vec<Option<String>>), InputError> {
+    let err = |body: Option<&str>, field: &str, reason: String| {
+        InputError::new(file, body, field, reason)
+    };
     let mut seen = std::collections::HashSet::new();
     if let Some((robot, _)) = robots.iter().find(|(k, _)| !seen.insert(k.as_str())) {
         let reason = "the robot is listed twice".to_owned();
@@ -171,7 +215,7 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
         .collect();
     let mut routes = vec![Vec::new(); cell.robots.len()];
     let mut done_by: Vec<Option<String>> = vec![None; cell.tasks.len()];
-    for (robot, list) in &robots {
+    for (robot, list) in robots {
         let field = key_field(prefix, robot);
         let Some(r) = cell.robots.iter().position(|x| &x.name == robot) else {
             let reason = "the cell has no robot of this name".to_owned();
@@ -206,31 +250,7 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
         })?;
         routes[r] = route;
     }
-    if let Some(t) = done_by.iter().position(Option::is_none) {
-        let name = &cell.tasks[t].name;
-        let reason =
-            format!("task \"{name}\" is in no robot's sequence: every task must be done once");
-        let field = if whole { key } else { "(every robot's list)" };
-        return Err(err(Some(name), field, reason));
-    }
-    let waits = match find("waits")?.filter(|_| whole && !blind) {
-        Some(list) if list.get() != "null" => waits(list, file, cell, &routes)?,
-        _ => Vec::new(),
-    };
-    // Changed moves are few (one per remedy): read as a tree.
-    let legs = match find("legs")?.filter(|_| whole && !blind) {
-        Some(list) if list.get() != "null" => {
-            let list: serde_json::Value = serde_json::from_str(list.get())
-                .map_err(|e| err(None, "legs", format!("not valid JSON: {e}")))?;
-            super::parse_legs(&list, file, cell, &routes)?
-        }
-        _ => Vec::new(),
-    };
-    Ok(Sequences {
-        routes,
-        waits,
-        legs,
-    })
+    Ok((routes, done_by))
 }
 
 /// The field of a robot's list: its key, or `""` for the empty key (found by fuzzing: an

@@ -312,6 +312,19 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     } else {
         candidate_pairs(scene, delta)
     };
+    let checks = run_pairs(scene, opts, &pairs, &settings);
+    report(scene, opts, &settings, (all_pairs, &pairs), &checks)
+}
+
+/// Each pair checked through the horizon, in the order given: on the pool when the work
+/// is worth it.
+fn run_pairs<'s>(
+    scene: &'s Scene,
+    opts: &CheckOptions,
+    pairs: &[(usize, usize)],
+    settings: &PairSettings,
+) -> Vec<PairCheck<'s>> {
+    let horizon = scene.horizon();
     let limit = SharedLimit::new();
     // Every pair is evaluated at the start before any runs on: a contact there stops all
     // of them at their first interval.
@@ -320,12 +333,12 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
             &scene.bodies[i],
             &scene.bodies[j],
             horizon,
-            &settings,
+            settings,
             &limit,
         )
     };
     let finish = |scratch: &mut Scratch, pair: &mut PairCheck| {
-        pair.finish(opts.method, &settings, &limit, scratch);
+        pair.finish(opts.method, settings, &limit, scratch);
     };
     // Decided by the work, not the number of pairs: many short pairs are quicker on one
     // thread, a few long ones are not.
@@ -345,16 +358,29 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         let mut scratch = Scratch::default();
         checks.iter_mut().for_each(|p| finish(&mut scratch, p));
     }
+    checks
+}
+
+/// The scene's report from its pairs' checks: the earliest contact or budget run out, and
+/// the statistics through it.
+fn report(
+    scene: &Scene,
+    opts: &CheckOptions,
+    settings: &PairSettings,
+    (all_pairs, pairs): (usize, &[(usize, usize)]),
+    checks: &[PairCheck],
+) -> CheckReport {
+    let (horizon, delta, time_tol) = (scene.horizon(), settings.delta, settings.time_tol);
     let outcomes = || checks.iter().map(PairCheck::outcome);
     // Earliest contact; ties go to the first pair in report order.
     let contact = outcomes()
-        .zip(&pairs)
+        .zip(pairs)
         .filter_map(|(o, p)| o.contact.map(|c| (c, p)))
         .min_by(|x, y| x.0.time.total_cmp(&y.0.time));
     // Earliest budget run out, which hides whatever comes after it; a contact at the same
     // time wins.
     let exhausted = outcomes()
-        .zip(&pairs)
+        .zip(pairs)
         .filter(|(o, _)| o.out_of_work)
         .map(|(o, p)| (o.safe_until, p))
         .min_by(|x, y| x.0.total_cmp(&y.0))
@@ -368,13 +394,13 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     let names =
         |(i, j): (usize, usize)| [scene.bodies[i].name.clone(), scene.bodies[j].name.clone()];
     let mut stats = Stats::default();
-    for c in &checks {
+    for c in checks {
         stats += c.stats_through(through);
     }
     let pair_stats = opts.per_pair.then(|| {
         checks
             .iter()
-            .zip(&pairs)
+            .zip(pairs)
             .map(|(c, &p)| PairStats {
                 bodies: names(p),
                 merged_intervals: c.merged_intervals(),

@@ -170,6 +170,24 @@ impl ConvexPolygon {
     /// # Ok::<(), workcell::geometry::PolygonError>(())
     /// ```
     pub fn new(points: &[[f64; 2]]) -> Result<(Self, Vec<PolygonWarning>), PolygonError> {
+        let mut warnings = Vec::new();
+        let pts = Self::distinct(points, &mut warnings)?;
+        let pts = Self::counter_clockwise(pts, &mut warnings)?;
+        let pts = Self::without_collinear(pts, &mut warnings)?;
+        Self::strictly_convex(&pts)?;
+        let vertices: Vec<Vec2> = pts.into_iter().map(|(_, p)| p).collect();
+        let mut polygon = Self::from_ccw(vertices);
+        polygon.repair = Self::shift_of(&polygon.vertices, points, &warnings);
+        polygon.warnings.clone_from(&warnings);
+        Ok((polygon, warnings))
+    }
+
+    /// The finite points as (input index, point), consecutive repeats removed (cyclically);
+    /// at least three.
+    fn distinct(
+        points: &[[f64; 2]],
+        warnings: &mut Vec<PolygonWarning>,
+    ) -> Result<Vec<(usize, Vec2)>, PolygonError> {
         for (i, p) in points.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
                 return Err(PolygonError::NotFinite {
@@ -179,8 +197,6 @@ impl ConvexPolygon {
                 });
             }
         }
-        let mut warnings = Vec::new();
-        // (input index, point), consecutive duplicates removed (cyclically).
         // Relative to the polygon's own size, not to its distance from the origin: far from
         // the origin, an absolute-scaled tolerance would merge distinct vertices.
         let first = points.first().map_or([0.0, 0.0], |p| *p);
@@ -206,6 +222,15 @@ impl ConvexPolygon {
                 distinct: pts.len(),
             });
         }
+        Ok(pts)
+    }
+
+    /// The points in counter-clockwise order (reversed if clockwise); a polygon without area
+    /// is refused.
+    fn counter_clockwise(
+        mut pts: Vec<(usize, Vec2)>,
+        warnings: &mut Vec<PolygonWarning>,
+    ) -> Result<Vec<(usize, Vec2)>, PolygonError> {
         // Work relative to the first vertex so that far-away polygons keep their precision.
         let origin = pts[0].1;
         let area2: f64 = (0..pts.len())
@@ -221,11 +246,15 @@ impl ConvexPolygon {
             pts.reverse();
             warnings.push(PolygonWarning::Reversed);
         }
-        // Drop collinear vertices in one pass: a stack, then the seam between last and first.
-        let turn = |p: &Vec2, c: &Vec2, q: &Vec2| {
-            let (e0, e1) = (c - p, q - c);
-            (cross(&e0, &e1) / (e0.norm() * e1.norm()), e0.dot(&e1) > 0.0)
-        };
+        Ok(pts)
+    }
+
+    /// The points without the vertices where the boundary goes straight on, in one pass: a
+    /// stack, then the seam between last and first.
+    fn without_collinear(
+        pts: Vec<(usize, Vec2)>,
+        warnings: &mut Vec<PolygonWarning>,
+    ) -> Result<Vec<(usize, Vec2)>, PolygonError> {
         let straight = |p: &Vec2, c: &Vec2, q: &Vec2| {
             let (sine, forward) = turn(p, c, q);
             sine.abs() <= SHAPE_TOL && forward
@@ -254,8 +283,12 @@ impl ConvexPolygon {
             };
             warnings.push(PolygonWarning::CollinearVertex(removed.0));
         }
-        let pts = kept;
-        // Every remaining turn must be strictly left; a reflex or cusp vertex is an error.
+        Ok(kept)
+    }
+
+    /// Every turn strictly left, winding once: a reflex or cusp vertex, or a star polygon
+    /// (which also turns only left but winds several times), is refused.
+    fn strictly_convex(pts: &[(usize, Vec2)]) -> Result<(), PolygonError> {
         let n = pts.len();
         for k in 0..n {
             let (sine, _) = turn(&pts[(k + n - 1) % n].1, &pts[k].1, &pts[(k + 1) % n].1);
@@ -263,7 +296,6 @@ impl ConvexPolygon {
                 return Err(PolygonError::NotConvex { vertex: pts[k].0 });
             }
         }
-        // All turns are left; a star polygon also turns only left but winds several times.
         let turning: f64 = (0..n)
             .map(|k| {
                 let e0 = pts[k].1 - pts[(k + n - 1) % n].1;
@@ -274,11 +306,7 @@ impl ConvexPolygon {
         if turning > TAU * 1.5 {
             return Err(PolygonError::NotConvex { vertex: pts[0].0 });
         }
-        let vertices: Vec<Vec2> = pts.into_iter().map(|(_, p)| p).collect();
-        let mut polygon = Self::from_ccw(vertices);
-        polygon.repair = Self::shift_of(&polygon.vertices, points, &warnings);
-        polygon.warnings.clone_from(&warnings);
-        Ok((polygon, warnings))
+        Ok(())
     }
 
     /// The removed vertex farthest from the boundary of `kept`, if any was removed.
@@ -412,6 +440,13 @@ impl ConvexPolygon {
     pub fn radius(&self) -> f64 {
         self.radius
     }
+}
+
+/// The turn at `c` between edges `p → c` and `c → q`: its sine (left positive) and whether
+/// the edges run forwards (rather than doubling back).
+fn turn(p: &Vec2, c: &Vec2, q: &Vec2) -> (f64, bool) {
+    let (e0, e1) = (c - p, q - c);
+    (cross(&e0, &e1) / (e0.norm() * e1.norm()), e0.dot(&e1) > 0.0)
 }
 
 #[cfg(test)]

@@ -33,31 +33,73 @@ const LABEL_CHAR_WIDTH: f64 = 7.0;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn chart(c: &Comparison) -> String {
-    let points: Vec<(&str, f64, usize, usize)> = c
+    let points: Vec<Point> = c
         .methods
         .iter()
         .filter(|m| m.median_us.is_finite() && m.median_us > 0.0)
         .map(|m| (m.method.as_str(), m.median_us, m.missed, m.invented))
         .collect();
-    // Whole decades around the times; missed from 0 to at least 1.
-    let (lo, hi) = points
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p.1.log10()), hi.max(p.1.log10()))
-        });
-    let (lo, hi) = if lo.is_finite() {
-        (lo.floor(), hi.ceil().max(lo.floor() + 1.0))
-    } else {
-        (0.0, 1.0)
-    };
-    let top_missed = points.iter().map(|p| p.2).max().unwrap_or(0).max(1) as f64;
-    let x = |us: f64| LEFT + (us.log10() - lo) / (hi - lo) * (RIGHT - LEFT);
-    let y = |missed: f64| BOTTOM - missed / top_missed * (BOTTOM - TOP);
-
+    let scale = Scale::of(&points);
     let title = format!(
         "{} scenes ({} colliding): time per check against collisions missed",
         c.scenes, c.colliding
     );
+    let mut doc = frame(&scale, &title);
+    // The sampling steps as one curve: finer steps cost more and miss less.
+    let sampled: Vec<String> = points
+        .iter()
+        .filter(|p| p.0.starts_with("sampled:"))
+        .map(|p| format!("{},{}", scale.x(p.1), scale.y(p.2 as f64)))
+        .collect();
+    if sampled.len() > 1 {
+        doc = doc.add(
+            Polyline::new()
+                .set("points", sampled.join(" "))
+                .set("fill", "none")
+                .set("stroke", colour("sampled"))
+                .set("stroke-dasharray", "4 3"),
+        );
+    }
+    labelled_points(doc, &points, &scale, &title).to_string()
+}
+
+/// A method's point: its name, median time per check (µs), scenes missed and invented.
+type Point<'a> = (&'a str, f64, usize, usize);
+
+/// The axes' ranges: whole decades of µs around the times, missed from 0 to at least 1.
+struct Scale {
+    lo: f64,
+    hi: f64,
+    top_missed: f64,
+}
+
+impl Scale {
+    fn of(points: &[Point]) -> Scale {
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.1.log10()), hi.max(p.1.log10()))
+            });
+        let (lo, hi) = if lo.is_finite() {
+            (lo.floor(), hi.ceil().max(lo.floor() + 1.0))
+        } else {
+            (0.0, 1.0)
+        };
+        let top_missed = points.iter().map(|p| p.2).max().unwrap_or(0).max(1) as f64;
+        Scale { lo, hi, top_missed }
+    }
+
+    fn x(&self, us: f64) -> f64 {
+        LEFT + (us.log10() - self.lo) / (self.hi - self.lo) * (RIGHT - LEFT)
+    }
+
+    fn y(&self, missed: f64) -> f64 {
+        BOTTOM - missed / self.top_missed * (BOTTOM - TOP)
+    }
+}
+
+/// The page: background, title, axes, grid lines with their values, and axis titles.
+fn frame(scale: &Scale, title: &str) -> Document {
     let mut doc = Document::new()
         .set("viewBox", (0.0, 0.0, WIDTH, HEIGHT))
         .set("width", WIDTH)
@@ -70,60 +112,49 @@ pub fn chart(c: &Comparison) -> String {
                 .set("height", "100%")
                 .set("fill", "white"),
         )
-        .add(text(WIDTH / 2.0, TITLE_Y, &title, "middle"));
+        .add(text(WIDTH / 2.0, TITLE_Y, title, "middle"));
     let mut axes = Group::new().set("stroke", "#444").set("stroke-width", 1);
     axes = axes
         .add(line(LEFT, BOTTOM, RIGHT, BOTTOM))
         .add(line(LEFT, TOP, LEFT, BOTTOM));
     doc = doc.add(axes);
-    for decade in lo as i32..=hi as i32 {
-        let px = x(10f64.powi(decade));
+    for decade in scale.lo as i32..=scale.hi as i32 {
+        let px = scale.x(10f64.powi(decade));
         doc = doc
             .add(line(px, BOTTOM, px, TOP).set("stroke", "#e0e0e0"))
             .add(text(px, BOTTOM + 18.0, &decade_label(decade), "middle"));
     }
-    let step = (top_missed / 5.0).ceil().max(1.0);
+    let step = (scale.top_missed / 5.0).ceil().max(1.0);
     let mut m = 0.0;
-    while m <= top_missed {
+    while m <= scale.top_missed {
+        let y = scale.y(m);
         doc = doc
-            .add(line(LEFT, y(m), RIGHT, y(m)).set("stroke", "#e0e0e0"))
-            .add(text(LEFT - 8.0, y(m) + 4.0, &format!("{m}"), "end"));
+            .add(line(LEFT, y, RIGHT, y).set("stroke", "#e0e0e0"))
+            .add(text(LEFT - 8.0, y + 4.0, &format!("{m}"), "end"));
         m += step;
     }
-    doc = doc
-        .add(text(
-            (LEFT + RIGHT) / 2.0,
-            BOTTOM + 40.0,
-            "median time per whole-scene check (µs, log scale)",
-            "middle",
-        ))
-        .add(text(0.0, 0.0, "collisions missed (scenes)", "middle").set(
-            "transform",
-            format!("translate(20 {}) rotate(-90)", (TOP + BOTTOM) / 2.0),
-        ));
-    // The sampling steps as one curve: finer steps cost more and miss less.
-    let sampled: Vec<String> = points
-        .iter()
-        .filter(|p| p.0.starts_with("sampled:"))
-        .map(|p| format!("{},{}", x(p.1), y(p.2 as f64)))
-        .collect();
-    if sampled.len() > 1 {
-        doc = doc.add(
-            Polyline::new()
-                .set("points", sampled.join(" "))
-                .set("fill", "none")
-                .set("stroke", colour("sampled"))
-                .set("stroke-dasharray", "4 3"),
-        );
-    }
-    // Labels read horizontally, just above and right of their point (left of it near the
-    // right edge). One that would overlap a label already placed, a point or the title moves
-    // up a line at a time, with a leader line back to its point.
+    doc.add(text(
+        (LEFT + RIGHT) / 2.0,
+        BOTTOM + 40.0,
+        "median time per whole-scene check (µs, log scale)",
+        "middle",
+    ))
+    .add(text(0.0, 0.0, "collisions missed (scenes)", "middle").set(
+        "transform",
+        format!("translate(20 {}) rotate(-90)", (TOP + BOTTOM) / 2.0),
+    ))
+}
+
+/// Each method's point and label, in order of time. Labels read horizontally, just above and
+/// right of their point (left of it near the right edge). One that would overlap a label
+/// already placed, a point or the title moves up a line at a time, with a leader line back to
+/// its point.
+fn labelled_points(mut doc: Document, points: &[Point], scale: &Scale, title: &str) -> Document {
     let title_half = LABEL_CHAR_WIDTH * title.chars().count() as f64 / 2.0;
     let mut taken: Vec<[f64; 4]> = points
         .iter()
         .map(|p| {
-            let (px, py) = (x(p.1), y(p.2 as f64));
+            let (px, py) = (scale.x(p.1), scale.y(p.2 as f64));
             [px - 5.0, py - 5.0, px + 5.0, py + 5.0]
         })
         .chain([[
@@ -136,7 +167,7 @@ pub fn chart(c: &Comparison) -> String {
     let mut by_x: Vec<_> = points.iter().collect();
     by_x.sort_by(|a, b| a.1.total_cmp(&b.1));
     for &&(name, us, missed, invented) in &by_x {
-        let (px, py) = (x(us), y(missed as f64));
+        let (px, py) = (scale.x(us), scale.y(missed as f64));
         let label = if invented > 0 {
             format!("{name} ({invented} invented)")
         } else {
@@ -168,8 +199,8 @@ pub fn chart(c: &Comparison) -> String {
             base -= LABEL_HEIGHT;
         }
         taken.push([x0, base - LABEL_HEIGHT + 2.0, x0 + width, base + 2.0]);
+        let lx = if anchor == "end" { x0 + width } else { x0 };
         if base < py - 8.0 - 1.0 {
-            let lx = if anchor == "end" { x0 + width } else { x0 };
             doc = doc.add(
                 line(px, py - 5.0, lx, base - 4.0)
                     .set("stroke", colour(name))
@@ -186,17 +217,9 @@ pub fn chart(c: &Comparison) -> String {
                     .set("stroke", if invented > 0 { "#d00" } else { "none" })
                     .set("stroke-width", 2),
             )
-            .add(
-                text(
-                    if anchor == "end" { x0 + width } else { x0 },
-                    base,
-                    &label,
-                    anchor,
-                )
-                .set("fill", colour(name)),
-            );
+            .add(text(lx, base, &label, anchor).set("fill", colour(name)));
     }
-    doc.to_string()
+    doc
 }
 
 fn colour(method: &str) -> &'static str {

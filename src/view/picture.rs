@@ -171,6 +171,24 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
         m.rounds.iter().collect()
     };
     let rings = ring_places(&marks, &frame, &mut placer);
+    doc = homes_and_tasks(doc, m, &frame, &mut placer);
+    doc = numbered_rings(doc, &marks, &rings, &frame);
+    if !animated {
+        doc = legend(
+            doc,
+            m,
+            frame.height + 4.0,
+            placer.left_out,
+            !marks.is_empty(),
+        );
+    }
+    doc
+}
+
+/// The robots' names at their homes and the tasks' crosses with their labels ("n. task" in
+/// the colour of the robot that does it). Every home and task is taken first, so that no
+/// label covers one.
+fn homes_and_tasks(mut doc: Document, m: &Model, frame: &Frame, placer: &mut Placer) -> Document {
     for robot in &m.robots {
         if let Some(h) = robot.home {
             let (x, y) = frame.xy(h[0], h[1]);
@@ -184,14 +202,7 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
     for robot in &m.robots {
         if let Some(h) = robot.home {
             let (x, y) = frame.xy(h[0], h[1]);
-            doc = add_label(
-                doc,
-                &mut placer,
-                (x, y),
-                &robot.name,
-                HOME_FONT,
-                robot.colour,
-            );
+            doc = add_label(doc, placer, (x, y), &robot.name, HOME_FONT, robot.colour);
         }
     }
     for (k, t) in m.tasks.iter().enumerate() {
@@ -212,10 +223,21 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
             Some((r, n)) => (format!("{}. {}", n + 1, t.name), r.colour),
             None => (t.name.clone(), "#424242"),
         };
-        doc = add_label(doc, &mut placer, (x, y), &label, TASK_FONT, colour);
+        doc = add_label(doc, placer, (x, y), &label, TASK_FONT, colour);
     }
-    // Leaders under every ring, so that no leader crosses another round's number.
-    for (mark, &(cx, cy)) in marks.iter().zip(&rings) {
+    doc
+}
+
+/// Each collision's ring with its round's number ("!" for a check's contact) at the place
+/// [`ring_places`] chose, led back to the contact point when moved. Leaders go under every
+/// ring, so that no leader crosses another round's number.
+fn numbered_rings(
+    mut doc: Document,
+    marks: &[&Mark],
+    rings: &[(f64, f64)],
+    frame: &Frame,
+) -> Document {
+    for (mark, &(cx, cy)) in marks.iter().zip(rings) {
         let (x, y) = frame.xy(mark.point[0], mark.point[1]);
         if (cx - x).hypot(cy - y) > 0.5 {
             doc = doc
@@ -227,7 +249,7 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
                 .add(circle(x, y, 2.0).set("fill", "#d50000"));
         }
     }
-    for (mark, &(cx, cy)) in marks.iter().zip(&rings) {
+    for (mark, &(cx, cy)) in marks.iter().zip(rings) {
         let number = mark.round.map_or("!".to_owned(), |r| r.to_string());
         let font = if number.len() > 2 { 8.0 } else { 11.0 };
         doc = doc
@@ -243,15 +265,6 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
                     .set("text-anchor", "middle")
                     .set("font-weight", "bold"),
             );
-    }
-    if !animated {
-        doc = legend(
-            doc,
-            m,
-            frame.height + 4.0,
-            placer.left_out,
-            !marks.is_empty(),
-        );
     }
     doc
 }
@@ -394,24 +407,12 @@ fn add_label(
     doc.add(text(p.x, p.y, label, size, colour).set("class", "label"))
 }
 
-fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) -> Document {
-    let mut y = top + LEGEND_ROW - 4.0;
-    for row in m.robots.chunks(LEGEND_PER_ROW) {
-        let mut x = MARGIN;
-        for robot in row {
-            doc = doc
-                .add(
-                    line(x, y - 4.0, x + 18.0, y - 4.0)
-                        .set("stroke", robot.colour)
-                        .set("stroke-width", 3),
-                )
-                .add(text(x + 22.0, y, &robot.name, 12.0, "#212121"));
-            x += (WIDTH - 2.0 * MARGIN) / LEGEND_PER_ROW as f64;
-        }
-        y += LEGEND_ROW;
-    }
-    type Symbol = fn(f64, f64) -> Box<dyn svg::Node>;
-    let mut entries: Vec<(Symbol, &str)> = vec![(
+/// A symbol drawn with its baseline's left end at (x, y).
+type Symbol = fn(f64, f64) -> Box<dyn svg::Node>;
+
+/// The legend's symbols and what each means: only those the picture shows.
+fn legend_entries(m: &Model, rings: bool) -> Vec<(Symbol, &'static str)> {
+    let mut entries: Vec<(Symbol, &'static str)> = vec![(
         |x, y| {
             Box::new(
                 Rectangle::new()
@@ -471,6 +472,26 @@ fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) 
             },
         ));
     }
+    entries
+}
+
+fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) -> Document {
+    let mut y = top + LEGEND_ROW - 4.0;
+    for row in m.robots.chunks(LEGEND_PER_ROW) {
+        let mut x = MARGIN;
+        for robot in row {
+            doc = doc
+                .add(
+                    line(x, y - 4.0, x + 18.0, y - 4.0)
+                        .set("stroke", robot.colour)
+                        .set("stroke-width", 3),
+                )
+                .add(text(x + 22.0, y, &robot.name, 12.0, "#212121"));
+            x += (WIDTH - 2.0 * MARGIN) / LEGEND_PER_ROW as f64;
+        }
+        y += LEGEND_ROW;
+    }
+    let entries = legend_entries(m, rings);
     let mut x = MARGIN;
     for (symbol, what) in entries {
         if x + 18.0 + text_width(what, 12.0) > WIDTH - MARGIN {

@@ -5,7 +5,7 @@ use super::moves::{limits, MoveStore};
 use super::options::SolveOptions;
 use super::prepare::StageTimes;
 use super::schedule::{route_nodes, Activity, BuildError, Collision, Delay, Schedule};
-use super::time_axis::{culprit, first_infinite_time};
+use super::time_axis::{culprit, first_infinite_time, Stretch};
 use crate::cell::{number, Cell, InputError, PieceSpec, Sequences};
 use crate::collision::{check, CheckReport};
 use crate::geometry::Vec2;
@@ -72,79 +72,9 @@ pub fn evaluate(
     let clock = Instant::now();
     let moves = MoveStore::new(cell, &opts.planner);
     let routes = &sequences.routes;
-    let delays: Vec<Delay> = sequences
-        .waits
-        .iter()
-        .map(|w| {
-            let nodes = route_nodes(&routes[w.robot]);
-            Delay {
-                robot: w.robot,
-                before_move: w.before_move,
-                nodes: (nodes[w.before_move], nodes[w.before_move + 1]),
-                duration: w.duration,
-            }
-        })
-        .collect();
-    let mut legs = Delay::legs(cell.robots.len(), &delays);
-    for spec in &sequences.legs {
-        let old = leg(&legs, spec.robot, spec.leg).clone();
-        let pieces: Vec<Piece> = spec
-            .pieces
-            .iter()
-            .map(|p| piece(cell, spec.robot, p, opts))
-            .collect();
-        let new = Leg {
-            pieces: Some(pieces.into()),
-            ..old
-        };
-        legs = with_leg(&legs, spec.robot, spec.leg, new);
-    }
-    let schedule = match Schedule::build(cell, routes, &legs, &moves) {
-        Ok(schedule) => schedule,
-        Err(BuildError::Precision { robot, time }) => {
-            let at = Placement {
-                robot,
-                time,
-                delays: &delays,
-            };
-            return Err(precision_error(cell, sequences, sequences_file, &moves, at));
-        }
-        Err(e @ BuildError::Discontinuous { .. }) => {
-            let (r, BuildError::Discontinuous { leg, .. }) = (e.robot(), &e) else {
-                unreachable!("matched above")
-            };
-            let robot = &cell.robots[r].name;
-            let k = sequences
-                .legs
-                .iter()
-                .position(|l| l.robot == r && l.leg == *leg);
-            let field = k.map_or(robot.clone(), |k| format!("legs[{k}]"));
-            return Err(InputError::new(
-                sequences_file,
-                Some(robot),
-                field,
-                e.reason(cell),
-            ));
-        }
-        Err(e) => {
-            let r = e.robot();
-            let robot = &cell.robots[r].name;
-            let BuildError::Move { from, to, .. } = e else {
-                unreachable!("handled above")
-            };
-            // The position in the robot's list of the task the move leads to (or leaves,
-            // for the way home).
-            let task = if to != 0 { to } else { from }.saturating_sub(1);
-            let k = routes[r].iter().position(|&t| t == task).unwrap_or(0);
-            let reason = e.reason(cell);
-            return Err(InputError::new(
-                sequences_file,
-                Some(robot),
-                format!("{robot}[{k}]"),
-                reason,
-            ));
-        }
-    };
+    let (delays, legs) = given_legs(cell, sequences, opts);
+    let schedule = Schedule::build(cell, routes, &legs, &moves)
+        .map_err(|e| build_error(cell, sequences, sequences_file, &moves, &delays, e))?;
     // A move whose time overflowed leaves samples the checker cannot take.
     if let Some((robot, time)) = schedule
         .robots
@@ -175,6 +105,88 @@ pub fn evaluate(
         collision_free,
         times,
     })
+}
+
+/// The waits and the changed moves given, as the schedule's legs.
+fn given_legs(cell: &Cell, sequences: &Sequences, opts: &SolveOptions) -> (Vec<Delay>, Legs) {
+    let routes = &sequences.routes;
+    let delays: Vec<Delay> = sequences
+        .waits
+        .iter()
+        .map(|w| {
+            let nodes = route_nodes(&routes[w.robot]);
+            Delay {
+                robot: w.robot,
+                before_move: w.before_move,
+                nodes: (nodes[w.before_move], nodes[w.before_move + 1]),
+                duration: w.duration,
+            }
+        })
+        .collect();
+    let mut legs = Delay::legs(cell.robots.len(), &delays);
+    for spec in &sequences.legs {
+        let old = leg(&legs, spec.robot, spec.leg).clone();
+        let pieces: Vec<Piece> = spec
+            .pieces
+            .iter()
+            .map(|p| piece(cell, spec.robot, p, opts))
+            .collect();
+        let new = Leg {
+            pieces: Some(pieces.into()),
+            ..old
+        };
+        legs = with_leg(&legs, spec.robot, spec.leg, new);
+    }
+    (delays, legs)
+}
+
+/// The input error for sequences whose schedule cannot be built: a move the planner cannot
+/// make (named by the task it leads to), a changed move that does not join its neighbours
+/// (`legs[k]`), or a schedule f64 cannot place.
+fn build_error(
+    cell: &Cell,
+    sequences: &Sequences,
+    sequences_file: &Path,
+    moves: &MoveStore,
+    delays: &[Delay],
+    e: BuildError,
+) -> InputError {
+    let routes = &sequences.routes;
+    match e {
+        BuildError::Precision { robot, time } => {
+            let at = Placement {
+                robot,
+                time,
+                delays,
+            };
+            precision_error(cell, sequences, sequences_file, moves, at)
+        }
+        e @ BuildError::Discontinuous { .. } => {
+            let (r, BuildError::Discontinuous { leg, .. }) = (e.robot(), &e) else {
+                unreachable!("matched above")
+            };
+            let robot = &cell.robots[r].name;
+            let k = sequences
+                .legs
+                .iter()
+                .position(|l| l.robot == r && l.leg == *leg);
+            let field = k.map_or(robot.clone(), |k| format!("legs[{k}]"));
+            InputError::new(sequences_file, Some(robot), field, e.reason(cell))
+        }
+        e => {
+            let r = e.robot();
+            let robot = &cell.robots[r].name;
+            let BuildError::Move { from, to, .. } = e else {
+                unreachable!("handled above")
+            };
+            // The position in the robot's list of the task the move leads to (or leaves,
+            // for the way home).
+            let task = if to != 0 { to } else { from }.saturating_sub(1);
+            let k = routes[r].iter().position(|&t| t == task).unwrap_or(0);
+            let reason = e.reason(cell);
+            InputError::new(sequences_file, Some(robot), format!("{robot}[{k}]"), reason)
+        }
+    }
 }
 
 /// Where a schedule left f64's time axis: robot, time, and the waits it was built with.
@@ -234,18 +246,7 @@ fn precision_error(
             )
         }
         Activity::Wait(_) => {
-            // The longest of the waits given before that move.
-            let i = (0..sequences.waits.len())
-                .filter(|&i| {
-                    let w = &sequences.waits[i];
-                    w.robot == r && w.before_move == blamed.step
-                })
-                .max_by(|&a, &b| {
-                    sequences.waits[a]
-                        .duration
-                        .total_cmp(&sequences.waits[b].duration)
-                })
-                .unwrap_or(0);
+            let i = longest_wait(sequences, r, blamed.step);
             let reason = format!(
                 "this wait of {} stretches the time axis: {what_lost}",
                 number(sequences.waits.get(i).map_or(blamed.length, |w| w.duration))
@@ -258,33 +259,59 @@ fn precision_error(
             )
         }
         Activity::Move { .. } | Activity::Pause { .. } | Activity::Park { .. } | Activity::Done => {
-            let robot = &cell.robots[r];
-            let limits = format!(
-                "max_speed {}, max_accel {}, max_turn_rate {}",
-                number(robot.max_speed),
-                number(robot.max_accel),
-                number(robot.max_turn_rate)
-            );
-            let the_move = blamed.activity.describe(cell, r);
-            let length = number(blamed.length);
-            let reason = if !blamed.length.is_finite() {
-                format!(
-                    "at its limits ({limits}) the robot's {the_move} takes longer than f64 holds"
-                )
-            } else if blamed == lost {
-                format!(
-                    "at its limits ({limits}) the robot's {the_move} takes only {length}, which \
-                     cannot keep its length {resolution}; lower the limits or rescale the time \
-                     unit"
-                )
-            } else {
-                format!(
-                    "at its limits ({limits}) the robot's {the_move} takes {length}: \
-                     {what_lost}; raise the limits or rescale the time unit"
-                )
-            };
+            let reason = limits_reason(cell, r, blamed, lost, &resolution, &what_lost);
             cell.error(Some(name), format!("robots[{r}]"), reason)
         }
+    }
+}
+
+/// The index of the longest of the waits given to robot `r` before move `step` (0 if none).
+fn longest_wait(sequences: &Sequences, r: usize, step: usize) -> usize {
+    (0..sequences.waits.len())
+        .filter(|&i| {
+            let w = &sequences.waits[i];
+            w.robot == r && w.before_move == step
+        })
+        .max_by(|&a, &b| {
+            sequences.waits[a]
+                .duration
+                .total_cmp(&sequences.waits[b].duration)
+        })
+        .unwrap_or(0)
+}
+
+/// Why robot `r`'s limits are to blame: its move takes longer than f64 holds, is too short
+/// for the axis where it lies, or stretches the axis so that `lost` cannot keep its length.
+fn limits_reason(
+    cell: &Cell,
+    r: usize,
+    blamed: Stretch,
+    lost: Stretch,
+    resolution: &str,
+    what_lost: &str,
+) -> String {
+    let robot = &cell.robots[r];
+    let limits = format!(
+        "max_speed {}, max_accel {}, max_turn_rate {}",
+        number(robot.max_speed),
+        number(robot.max_accel),
+        number(robot.max_turn_rate)
+    );
+    let the_move = blamed.activity.describe(cell, r);
+    let length = number(blamed.length);
+    if !blamed.length.is_finite() {
+        format!("at its limits ({limits}) the robot's {the_move} takes longer than f64 holds")
+    } else if blamed == lost {
+        format!(
+            "at its limits ({limits}) the robot's {the_move} takes only {length}, which \
+             cannot keep its length {resolution}; lower the limits or rescale the time \
+             unit"
+        )
+    } else {
+        format!(
+            "at its limits ({limits}) the robot's {the_move} takes {length}: \
+             {what_lost}; raise the limits or rescale the time unit"
+        )
     }
 }
 
