@@ -228,6 +228,15 @@ fn generate(
     run_generate(&what, seed, count.unwrap_or(10), out)
 }
 
+/// `--planning`'s value (clap has checked it is one of these).
+fn planning_of(value: &str) -> workcell::wcp::Planning {
+    match value {
+        "all" => workcell::wcp::Planning::All,
+        "lazy" => workcell::wcp::Planning::Lazy,
+        _ => workcell::wcp::Planning::Auto,
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -242,12 +251,13 @@ fn main() -> ExitCode {
             html,
         } => {
             let defaults = CheckOptions::default();
+            let max_work_per_pair = max_work.unwrap_or(defaults.max_work_per_pair);
             let opts = CheckOptions {
                 delta,
                 time_tol,
                 per_pair,
                 method,
-                max_work_per_pair: max_work.unwrap_or(defaults.max_work_per_pair),
+                max_work_per_pair,
                 ..defaults
             };
             cli::check::run_check(&scene, json, &opts, html.as_deref())
@@ -273,11 +283,7 @@ fn main() -> ExitCode {
                 // Beyond what a Duration holds, no limit at all.
                 time_limit: time_limit.and_then(|t| std::time::Duration::try_from_secs_f64(t).ok()),
                 progress,
-                planning: match planning.as_str() {
-                    "all" => workcell::wcp::Planning::All,
-                    "lazy" => workcell::wcp::Planning::Lazy,
-                    _ => workcell::wcp::Planning::Auto,
-                },
+                planning: planning_of(&planning),
             },
         ),
         Command::Evaluate {

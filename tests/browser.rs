@@ -235,9 +235,19 @@ fn no_console_errors(b: &Browser, what: &str) {
     assert!(errors.is_empty(), "{what}: the console logged {errors:?}");
 }
 
+/// One browser for every page (starting one costs more than the pages).
 #[test]
 fn animated_pages_in_headless_chromium() {
     let Some(b) = browser() else { return };
+    solve_page(&b);
+    check_page(&b);
+    parts_page(&b);
+    let _ = std::fs::remove_dir_all(temp_dir());
+}
+
+/// `solve`'s page: robots where the trajectories put them, the cursor, play and pause, and
+/// a click on a robot that says what it does.
+fn solve_page(b: &Browser) {
     let (page, scene_file) = (temp("feedback.html"), temp("feedback-scene.json"));
     let out = workcell(&[
         "solve",
@@ -260,9 +270,9 @@ fn animated_pages_in_headless_chromium() {
         makespan,
         makespan + 5.0,
     ];
-    robots_follow_the_trajectories(&b, &scene, &times, "solve page");
+    robots_follow_the_trajectories(b, &scene, &times, "solve page");
     // At the end, the cursor sits on the makespan's line.
-    set_time(&b, makespan);
+    set_time(b, makespan);
     let xs = b.run(
         "return [+document.getElementById('cursor').getAttribute('x1'), \
          +document.getElementById('makespan').getAttribute('x1')];",
@@ -272,9 +282,9 @@ fn animated_pages_in_headless_chromium() {
         (xs[0].as_f64().unwrap() - xs[1].as_f64().unwrap()).abs() < 0.5,
         "{xs}"
     );
-    play_and_pause(&b);
+    play_and_pause(b);
     // A click on the first robot says what it does then, as the result's schedule has it.
-    let t = set_time(&b, 0.45 * makespan);
+    let t = set_time(b, 0.45 * makespan);
     let robot = result["sequences"]
         .as_object()
         .unwrap()
@@ -303,7 +313,7 @@ fn animated_pages_in_headless_chromium() {
         info.starts_with(&robot) && info.contains(&start),
         "{info} for {segment}"
     );
-    no_console_errors(&b, "solve page");
+    no_console_errors(b, "solve page");
     if let Some(png) = std::env::var_os("WORKCELL_SCREENSHOT") {
         // The README's picture: the first round's collision shown, the first robot clicked.
         b.click("#marks button");
@@ -313,8 +323,10 @@ fn animated_pages_in_headless_chromium() {
         );
         std::fs::write(&png, b.screenshot()).expect("the screenshot is written");
     }
+}
 
-    // `check`: the first contact highlighted at its time, the safe prefix on the track.
+/// `check`'s page: the first contact highlighted at its time, the safe prefix on the track.
+fn check_page(b: &Browser) {
     let scene_file = shipped("paper-fig12b.json");
     let page = temp("fig12b.html");
     let out = workcell(&[
@@ -332,13 +344,13 @@ fn animated_pages_in_headless_chromium() {
     b.open(&format!("file://{}", page.display()));
     let (t0, t1) = scene.horizon();
     robots_follow_the_trajectories(
-        &b,
+        b,
         &scene,
         &[t0, 0.3 * t1, contact, 0.8 * t1, t1],
         "check page",
     );
     let shown = |t: f64| {
-        set_time(&b, t);
+        set_time(b, t);
         b.run(
             "return document.getElementById('contact').getAttribute('visibility');",
             json!([]),
@@ -369,10 +381,12 @@ fn animated_pages_in_headless_chromium() {
         json!([]),
     );
     assert_eq!(ticks, 1);
-    play_and_pause(&b);
-    no_console_errors(&b, "check page");
+    play_and_pause(b);
+    no_console_errors(b, "check page");
+}
 
-    // Bodies of parts: drawn part by part, an outline as itself, its seams on hover only.
+/// Bodies of parts: drawn part by part, an outline as itself, its seams on hover only.
+fn parts_page(b: &Browser) {
     let scene_file = temp("parts.json");
     let text = json!({
         "delta": 0.01,
@@ -402,7 +416,7 @@ fn animated_pages_in_headless_chromium() {
     );
     let scene = load_scene(&scene_file).unwrap().scene;
     b.open(&format!("file://{}", page.display()));
-    robots_follow_the_trajectories(&b, &scene, &[0.0, 0.7, 1.3, 2.0], "parts page");
+    robots_follow_the_trajectories(b, &scene, &[0.0, 0.7, 1.3, 2.0], "parts page");
     let seams =
         "return Array.from(document.querySelectorAll('#robot-1 polygon:not([fill-opacity])'))\
                  .map(p => p.getAttribute('visibility'));";
@@ -417,6 +431,5 @@ fn animated_pages_in_headless_chromium() {
         json!([]),
     );
     assert_eq!(b.run(seams, json!([])), json!(["visible", "visible"]));
-    no_console_errors(&b, "parts page");
-    let _ = std::fs::remove_dir_all(temp_dir());
+    no_console_errors(b, "parts page");
 }

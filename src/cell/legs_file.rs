@@ -193,49 +193,54 @@ fn piece(p: &Value, at: &str) -> Result<PieceSpec, Failure> {
             "a motion needs at least one primitive".into(),
         ));
     }
-    let mut primitives = Vec::with_capacity(list.len());
-    for (i, q) in list.iter().enumerate() {
-        let at = format!("{at}.go.primitives[{i}]");
-        let Some(Value::Array(points)) = q.get("path") else {
-            return Err((
-                format!("{at}.path"),
-                "expected a list of points [x, y]".into(),
-            ));
-        };
-        if points.len() < 2 {
-            return Err((
-                format!("{at}.path"),
-                "a path needs at least two points".into(),
-            ));
-        }
-        let path = points
-            .iter()
-            .enumerate()
-            .map(|(n, pt)| match pt.as_array().map(Vec::as_slice) {
-                Some([x, y]) => match (x.as_f64(), y.as_f64()) {
-                    (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
-                    _ => Err((
-                        format!("{at}.path[{n}]"),
-                        "coordinates must be finite numbers".into(),
-                    )),
-                },
-                _ => Err((format!("{at}.path[{n}]"), "expected a point [x, y]".into())),
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let any = |_: f64| true;
-        let theta = number(
-            q.get("theta"),
-            format!("{at}.theta"),
-            any,
-            "a finite number",
-        )?;
-        let turn = number(
-            q.get("turn"),
-            format!("{at}.turn"),
-            |t| t.abs() <= std::f64::consts::PI,
-            "a turn of at most π",
-        )?;
-        primitives.push(PrimitiveSpec { path, theta, turn });
-    }
+    let primitives = list
+        .iter()
+        .enumerate()
+        .map(|(i, q)| primitive(q, &format!("{at}.go.primitives[{i}]")))
+        .collect::<Result<Vec<_>, _>>()?;
     Ok(PieceSpec::Go { primitives, scale })
+}
+
+/// A primitive of a motion: `path` (at least two finite points), `theta`, `turn` (at most π).
+fn primitive(q: &Value, at: &str) -> Result<PrimitiveSpec, Failure> {
+    let Some(Value::Array(points)) = q.get("path") else {
+        return Err((
+            format!("{at}.path"),
+            "expected a list of points [x, y]".into(),
+        ));
+    };
+    if points.len() < 2 {
+        return Err((
+            format!("{at}.path"),
+            "a path needs at least two points".into(),
+        ));
+    }
+    let path = points
+        .iter()
+        .enumerate()
+        .map(|(n, pt)| match pt.as_array().map(Vec::as_slice) {
+            Some([x, y]) => match (x.as_f64(), y.as_f64()) {
+                (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
+                _ => Err((
+                    format!("{at}.path[{n}]"),
+                    "coordinates must be finite numbers".into(),
+                )),
+            },
+            _ => Err((format!("{at}.path[{n}]"), "expected a point [x, y]".into())),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let any = |_: f64| true;
+    let theta = number(
+        q.get("theta"),
+        format!("{at}.theta"),
+        any,
+        "a finite number",
+    )?;
+    let turn = number(
+        q.get("turn"),
+        format!("{at}.turn"),
+        |t| t.abs() <= std::f64::consts::PI,
+        "a turn of at most π",
+    )?;
+    Ok(PrimitiveSpec { path, theta, turn })
 }

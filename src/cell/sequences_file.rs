@@ -186,6 +186,9 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
     })
 }
 
+/// For each task, the field of the list that names it (none: no list does).
+type DoneBy = Vec<Option<String>>;
+
 /// Robots' names with their raw lists, in file order.
 type NamedLists<'t> = [(String, &'t RawValue)];
 
@@ -198,7 +201,7 @@ fn routes(
     prefix: &str,
     file: &Path,
     cell: &Cell,
-) -> Result<(Vec<Vec<usize>>, Vec<Option<String>>), InputError> {
+) -> Result<(Vec<Vec<usize>>, DoneBy), InputError> {
     let err = |body: Option<&str>, field: &str, reason: String| {
         InputError::new(file, body, field, reason)
     };

@@ -79,9 +79,40 @@ fn summary(
         out.push_str(&l);
         out.push('\n');
     };
-    // What a verdict of free rests on: a proof, a proof up to grazes, or nothing at all.
+    let proof = proof(r, opts);
+    verdict_lines(path, r, opts, &proof, &mut line);
+    let s = &r.stats;
+    line(format!(
+        "intervals {}, bisections {}, narrow-phase calls {}, feature steps {}, walk fallbacks {}, convexity certificates {}",
+        s.intervals, s.bisections, s.narrow_phase_calls, s.feature_steps, s.walk_fallbacks, s.convexity_certificates
+    ));
+    for p in r.pair_stats.iter().flatten() {
+        let s = &p.stats;
+        line(format!(
+            "  {} - {}: {} of {} merged intervals, bisections {}, narrow-phase calls {}, feature steps {}",
+            p.bodies[0], p.bodies[1], s.intervals, p.merged_intervals, s.bisections, s.narrow_phase_calls, s.feature_steps
+        ));
+    }
+    if s.grazing > 0 {
+        line(format!(
+            "NOT CERTIFIED: {} (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
+            super::counted(s.grazing, "interval"), opts.grazing_tol
+        ));
+    }
+    line(format!(
+        "{} checked ({} more pruned by the broad phase) in {:.3} ms on {}",
+        super::counted(r.pairs as u64, "pair"),
+        r.pairs_pruned,
+        elapsed.as_secs_f64() * 1e3,
+        super::counted(threads as u64, "thread")
+    ));
+    out
+}
+
+/// What a verdict of free rests on: a proof, a proof up to grazes, or nothing at all.
+fn proof(r: &CheckReport, opts: &CheckOptions) -> String {
     let method = opts.method;
-    let proof = if !method.proves_free() {
+    if !method.proves_free() {
         format!("not certified: `{method}` certifies nothing")
     } else if r.stats.unresolved > 0 {
         format!(
@@ -92,7 +123,18 @@ fn summary(
         "NOT CERTIFIED: within the grazing allowance".to_owned()
     } else {
         "certified".to_owned()
-    };
+    }
+}
+
+/// The verdict's lines: the collision, or what is proven free and until when.
+fn verdict_lines(
+    path: &Path,
+    r: &CheckReport,
+    opts: &CheckOptions,
+    proof: &str,
+    line: &mut impl FnMut(String),
+) {
+    let method = opts.method;
     match r.verdict() {
         Verdict::Unresolved { budget: b } => {
             line(format!(
@@ -150,32 +192,6 @@ fn summary(
             ));
         }
     }
-    let s = &r.stats;
-    line(format!(
-        "intervals {}, bisections {}, narrow-phase calls {}, feature steps {}, walk fallbacks {}, convexity certificates {}",
-        s.intervals, s.bisections, s.narrow_phase_calls, s.feature_steps, s.walk_fallbacks, s.convexity_certificates
-    ));
-    for p in r.pair_stats.iter().flatten() {
-        let s = &p.stats;
-        line(format!(
-            "  {} - {}: {} of {} merged intervals, bisections {}, narrow-phase calls {}, feature steps {}",
-            p.bodies[0], p.bodies[1], s.intervals, p.merged_intervals, s.bisections, s.narrow_phase_calls, s.feature_steps
-        ));
-    }
-    if s.grazing > 0 {
-        line(format!(
-            "NOT CERTIFIED: {} (each shorter than the time tolerance) graze delta: proven only to stay above delta*(1 - {:e})",
-            super::counted(s.grazing, "interval"), opts.grazing_tol
-        ));
-    }
-    line(format!(
-        "{} checked ({} more pruned by the broad phase) in {:.3} ms on {}",
-        super::counted(r.pairs as u64, "pair"),
-        r.pairs_pruned,
-        elapsed.as_secs_f64() * 1e3,
-        super::counted(threads as u64, "thread")
-    ));
-    out
 }
 
 /// A time for people: nine decimals, or every digit f64 holds when it is huge (nine

@@ -70,6 +70,10 @@ pub(super) fn search(
 }
 
 /// [`search`], refining the grazes before a contact when `refine`.
+///
+/// One loop over the stack of intervals, read top to bottom as the paper's cases of an
+/// interval (out of work, no geometry, contact, certified, graze, unresolved, bisect): kept
+/// whole so that each case's `continue` or return stays in sight of the others.
 #[allow(clippy::too_many_arguments)]
 fn search_with(
     eta: &mut Eta,

@@ -118,45 +118,19 @@ pub fn closest_features(
             Step::Overlap => return result(0.0),
         }
         let distance = (pb - pa).norm();
-        // The slack of a vertex region (and rounding, on long edges) lets through a
-        // neighbouring edge that approaches the other feature at an angle too small to
-        // see from the closest points; along a long edge that angle is worth more than δ.
-        // Such an edge, when closer, takes over.
-        let floor = settled_floor(distance, &pa, &pb, tol);
-        let closer = |ea: Feature, eb: Feature| {
-            let (qa, qb) = feature_points(a, ea, b, eb, tol.parallel_tol);
-            (qb - qa).norm() < floor
-        };
-        match (fa, fb) {
-            (Feature::Vertex(v), Feature::Edge(e)) => {
-                if let Some(f) = approaching_edges(a, v, b.normal(e)).find(|&f| closer(f, fb)) {
-                    fa = f;
-                    continue;
+        match settle(a, b, (fa, fb), (pa, pb), distance, tol) {
+            Settle::Move(ea, eb) => {
+                (fa, fb) = (ea, eb);
+                continue;
+            }
+            Settle::Cross(x) => {
+                return Distance {
+                    point_a: x,
+                    point_b: x,
+                    ..result(0.0)
                 }
             }
-            (Feature::Edge(e), Feature::Vertex(v)) => {
-                if let Some(f) = approaching_edges(b, v, a.normal(e)).find(|&f| closer(fa, f)) {
-                    fb = f;
-                    continue;
-                }
-            }
-            _ => {}
-        }
-        if let (Feature::Edge(i), Feature::Edge(j)) = (fa, fb) {
-            match overlap_end(a, i, b, j, (distance, floor), tol) {
-                OverlapEnd::Cross(x) => {
-                    return Distance {
-                        point_a: x,
-                        point_b: x,
-                        ..result(0.0)
-                    }
-                }
-                OverlapEnd::Closer(pair) => {
-                    (fa, fb) = (pair.a, pair.b);
-                    continue;
-                }
-                OverlapEnd::Middle => {}
-            }
+            Settle::Done => {}
         }
         return result(distance);
     }
@@ -165,6 +139,58 @@ pub fn closest_features(
         fell_back: true,
         ..brute_force_distance(a, b)
     }
+}
+
+/// What the walk does at a pair of features that passed both Voronoi tests.
+enum Settle {
+    /// A closer pair takes over.
+    Move(Feature, Feature),
+    /// Two edges cross at this point: distance 0.
+    Cross(Vec2),
+    /// The pair is the closest one.
+    Done,
+}
+
+/// The checks after the Voronoi tests. The slack of a vertex region (and rounding, on long
+/// edges) lets through a neighbouring edge that approaches the other feature at an angle too
+/// small to see from the closest points; along a long edge that angle is worth more than δ.
+/// Such an edge, when closer, takes over; two nearly parallel edges hand over to the pair at
+/// an end of their overlap when it is closer, or cross.
+#[inline]
+fn settle(
+    a: &Posed,
+    b: &Posed,
+    (fa, fb): (Feature, Feature),
+    (pa, pb): (Vec2, Vec2),
+    distance: f64,
+    tol: &WalkTolerances,
+) -> Settle {
+    let floor = settled_floor(distance, &pa, &pb, tol);
+    let closer = |ea: Feature, eb: Feature| {
+        let (qa, qb) = feature_points(a, ea, b, eb, tol.parallel_tol);
+        (qb - qa).norm() < floor
+    };
+    match (fa, fb) {
+        (Feature::Vertex(v), Feature::Edge(e)) => {
+            if let Some(f) = approaching_edges(a, v, b.normal(e)).find(|&f| closer(f, fb)) {
+                return Settle::Move(f, fb);
+            }
+        }
+        (Feature::Edge(e), Feature::Vertex(v)) => {
+            if let Some(f) = approaching_edges(b, v, a.normal(e)).find(|&f| closer(fa, f)) {
+                return Settle::Move(fa, f);
+            }
+        }
+        _ => {}
+    }
+    if let (Feature::Edge(i), Feature::Edge(j)) = (fa, fb) {
+        match overlap_end(a, i, b, j, (distance, floor), tol) {
+            OverlapEnd::Cross(x) => return Settle::Cross(x),
+            OverlapEnd::Closer(pair) => return Settle::Move(pair.a, pair.b),
+            OverlapEnd::Middle => {}
+        }
+    }
+    Settle::Done
 }
 
 /// The edges at vertex `v` of `p` whose other end lies nearer than `v` to the line of an

@@ -6,7 +6,7 @@ use crate::collision::{CheckReport, Scene, Verdict};
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::Motion;
 use crate::wcp::remedy_json::{ChangeJson, LegJson, PieceJson};
-use crate::wcp::report::ResultJson;
+use crate::wcp::report::{ResultJson, SegmentJson};
 use serde::Serialize;
 
 /// Robot colours, distinct on white and for the common colour-vision deficiencies first
@@ -244,40 +244,11 @@ impl Model {
             let Some((_, segments)) = result.schedule.get(r) else {
                 continue;
             };
-            let place = |n: &str| {
-                if n == robot.name {
-                    "home".to_owned()
-                } else {
-                    n.to_owned()
-                }
-            };
-            for s in segments {
-                let on = match s.to {
-                    Some(to) if s.at == robot.name && to == robot.name => {
-                        "excursion from home".to_owned()
-                    }
-                    Some(to) => format!("move {} -> {}", place(s.at), place(to)),
-                    None => String::new(),
-                };
-                let (kind, label, short) = match s.activity {
-                    "task" => ("task", format!("task {}", s.at), s.at.to_owned()),
-                    "wait" => ("wait", format!("wait at {}", place(s.at)), String::new()),
-                    "pause" => ("pause", format!("pause on {on}"), String::new()),
-                    "park" => ("park", format!("parked aside on {on}"), String::new()),
-                    _ => (
-                        move_kind(&robot.name, &on, &result.legs, &changes),
-                        on,
-                        String::new(),
-                    ),
-                };
-                robot.bars.push(Bar {
-                    kind,
-                    label,
-                    short,
-                    start: s.start,
-                    end: s.end,
-                });
-            }
+            let bars: Vec<Bar> = segments
+                .iter()
+                .map(|seg| bar_of(&robot.name, seg, result, &changes))
+                .collect();
+            robot.bars.extend(bars);
         }
         let mark = |round, c: &crate::wcp::report::CollisionJson| Mark {
             round,
@@ -285,23 +256,7 @@ impl Model {
             bodies: c.bodies.clone(),
             point: c.point,
         };
-        let verdict = format!(
-            "makespan {:.3}, {}{}",
-            result.makespan,
-            match (&result.first_collision, result.collision_free) {
-                (Some(c), _) => format!(
-                    "COLLISION between {} and {} at t = {:.3}",
-                    c.bodies[0], c.bodies[1], c.time
-                ),
-                (None, true) => "collision-free (certified)".to_owned(),
-                (None, false) => "NOT certified".to_owned(),
-            },
-            match result.feedback.len() {
-                0 => String::new(),
-                1 => ", 1 round".to_owned(),
-                n => format!(", {n} rounds"),
-            }
-        );
+        let verdict = verdict_of(result);
         Model {
             title: file_title(&cell.file),
             verdict,
@@ -500,6 +455,62 @@ fn move_kind(robot: &str, on: &str, legs: &[LegJson], changes: &[&ChangeJson]) -
     } else {
         "move"
     }
+}
+
+/// A segment of a solve result's schedule as a bar of robot `name`'s lane: what it does,
+/// its tooltip, and the text it shows when wide enough (a task's name).
+fn bar_of(name: &str, s: &SegmentJson, result: &ResultJson, changes: &[&ChangeJson]) -> Bar {
+    let place = |n: &str| {
+        if n == name {
+            "home".to_owned()
+        } else {
+            n.to_owned()
+        }
+    };
+    let on = match s.to {
+        Some(to) if s.at == name && to == name => "excursion from home".to_owned(),
+        Some(to) => format!("move {} -> {}", place(s.at), place(to)),
+        None => String::new(),
+    };
+    let (kind, label, short) = match s.activity {
+        "task" => ("task", format!("task {}", s.at), s.at.to_owned()),
+        "wait" => ("wait", format!("wait at {}", place(s.at)), String::new()),
+        "pause" => ("pause", format!("pause on {on}"), String::new()),
+        "park" => ("park", format!("parked aside on {on}"), String::new()),
+        _ => (
+            move_kind(name, &on, &result.legs, changes),
+            on,
+            String::new(),
+        ),
+    };
+    Bar {
+        kind,
+        label,
+        short,
+        start: s.start,
+        end: s.end,
+    }
+}
+
+/// A solve result's headline: makespan, the collision or whether it is certified, rounds.
+fn verdict_of(result: &ResultJson) -> String {
+    format!(
+        "makespan {:.3}, {}{}",
+        result.makespan,
+        match (&result.first_collision, result.collision_free) {
+            (Some(c), _) => format!(
+                "COLLISION between {} and {} at t = {:.3}",
+                c.bodies[0], c.bodies[1], c.time
+            ),
+            (None, true) => "collision-free (certified)".to_owned(),
+            (None, false) => "NOT certified".to_owned(),
+        },
+        match result.feedback.len() {
+            0 => String::new(),
+            1 => ", 1 round".to_owned(),
+            n => format!(", {n} rounds"),
+        }
+    )
 }
 
 #[cfg(test)]

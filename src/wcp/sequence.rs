@@ -111,19 +111,8 @@ pub fn sequence_with(
                 Err(sequencer::SequencerError::Infeasible) if best.is_some() => break,
                 Err(e) => return Err(sequencer_error(cell, e)),
             };
-        let missing = bounded_moves(&inst, &sol.sequences);
-        let times = prepared.moves.plan_all(&missing, &|| ());
-        let exact_all = missing
-            .iter()
-            .zip(&times)
-            .all(|(&(r, a, b), &t)| t == inst.travel(r, a, b) && t == inst.travel(r, b, a));
-        let table = Arc::make_mut(&mut known);
-        for (&(r, a, b), &t) in missing.iter().zip(&times) {
-            table[r].insert((a, b), t);
-            table[r].insert((b, a), t);
-        }
         // Every move of the plan is known now: its true costs.
-        let exact = missing.is_empty() || exact_all;
+        let exact = learn_moves(prepared, &inst, &sol, &mut known);
         let mut certified = evaluate(prepared, &inst, &known, conflicts, sol.clone(), exact);
         // The makespan the search aimed at is the true one: the moves that changed lie off
         // the longest route. An optimum on bounds that keeps its makespan once exact is an
@@ -155,6 +144,28 @@ pub fn sequence_with(
         seq_opts.iterations = (opts.sequencer.iterations / WARM_ROUND_SHARE).max(1);
     }
     best.ok_or_else(|| sequencer_error(cell, sequencer::SequencerError::Infeasible))
+}
+
+/// Plans the moves of `sol` that `inst` only bounds and adds their times to `known` (both
+/// ways); whether the plan's costs were exact already (no move missing, or each bound met).
+fn learn_moves(
+    prepared: &Prepared,
+    inst: &Instance,
+    sol: &Solution,
+    known: &mut Arc<ExactArcs>,
+) -> bool {
+    let missing = bounded_moves(inst, &sol.sequences);
+    let times = prepared.moves.plan_all(&missing, &|| ());
+    let exact_all = missing
+        .iter()
+        .zip(&times)
+        .all(|(&(r, a, b), &t)| t == inst.travel(r, a, b) && t == inst.travel(r, b, a));
+    let table = Arc::make_mut(known);
+    for (&(r, a, b), &t) in missing.iter().zip(&times) {
+        table[r].insert((a, b), t);
+        table[r].insert((b, a), t);
+    }
+    missing.is_empty() || exact_all
 }
 
 /// The moves of `sequences` whose travel time `inst` only bounds, as `(robot, a, b)` with

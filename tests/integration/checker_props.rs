@@ -14,7 +14,7 @@ use proptest::test_runner::TestRunner;
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use std::f64::consts::PI;
 use std::sync::OnceLock;
-use workcell::collision::{check, Body, CheckOptions, CheckReport, Scene};
+use workcell::collision::{check, Body, CheckOptions, CheckReport, Contact, Scene};
 use workcell::geometry::Vec2;
 use workcell::motion::{Sample, Trajectory};
 
@@ -374,8 +374,6 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
     // Certificates prove a distance of at least δ(1 − grazing_tol): closer than that (with
     // rounding to spare) at a sampled instant is a contact the checker must report.
     let must_report = DELTA * (1.0 - opts.grazing_tol) - EPS;
-    // Slack for the time comparisons: a few rounding errors of the horizon's end.
-    let slack = 1e-12 * (1.0 + h1.abs());
 
     prop_assert_eq!(report.horizon, [h0, h1]);
     prop_assert_eq!(report.delta, DELTA);
@@ -407,51 +405,7 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
             prop_assert!(!report.collision);
             prop_assert_eq!(report.safe_until, h1, "free scene not certified to the end");
         }
-        Some(c) => {
-            prop_assert!(report.collision);
-            prop_assert!(
-                (h0..=h1).contains(&c.time),
-                "contact time {} outside the horizon [{h0}, {h1}]",
-                c.time
-            );
-            // (b) At the reported time, the named pair is closer than δ.
-            let index = |name: &str| NAMES.iter().position(|n| *n == name).unwrap();
-            let pair = (index(&c.bodies[0]), index(&c.bodies[1]));
-            prop_assert!(
-                spec.pairs().contains(&pair),
-                "reported pair {:?} is not one of the scene's pairs in report order",
-                c.bodies
-            );
-            let d = spec.distance(pair, c.time);
-            prop_assert!(
-                d < DELTA + EPS,
-                "contact reported at t = {} but the distance there is {d:e} >= δ",
-                c.time
-            );
-            prop_assert!(
-                (d - c.distance).abs() <= EPS,
-                "reported distance {:e}, exact {d:e}",
-                c.distance
-            );
-            // (c) Not later than the earliest sampled contact, up to the time tolerance.
-            if let Some((t, d)) = first_sampled {
-                prop_assert!(
-                    c.time <= t + report.time_tol + slack,
-                    "first contact reported at {}, but distance {d:e} at t = {t} (tol {:e})",
-                    c.time,
-                    report.time_tol
-                );
-            }
-            // The certified prefix ends within the time tolerance before the contact.
-            prop_assert!(
-                report.safe_until <= c.time
-                    && c.time - report.safe_until <= report.time_tol + slack,
-                "safe_until {} vs contact time {} (tol {:e})",
-                report.safe_until,
-                c.time,
-                report.time_tol
-            );
-        }
+        Some(c) => contact_holds(spec, &report, c, first_sampled)?,
     }
     // (e) Nothing sampled before safe_until is closer than δ(1 − grazing_tol).
     if let Some(&(t, d)) = close
@@ -466,11 +420,77 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
     }
 
     // (d) The report does not depend on the number of threads.
+    same_on_any_threads(&scene, &opts, &report)
+}
+
+/// (b) At the reported time, the named pair is closer than δ; (c) not later than the earliest
+/// sampled contact, up to the time tolerance; the certified prefix ends within the time
+/// tolerance before the contact.
+fn contact_holds(
+    spec: &SceneSpec,
+    report: &CheckReport,
+    c: &Contact,
+    first_sampled: Option<(f64, f64)>,
+) -> Result<(), TestCaseError> {
+    let (h0, h1) = spec.horizon();
+    // Slack for the time comparisons: a few rounding errors of the horizon's end.
+    let slack = 1e-12 * (1.0 + h1.abs());
+    prop_assert!(report.collision);
+    prop_assert!(
+        (h0..=h1).contains(&c.time),
+        "contact time {} outside the horizon [{h0}, {h1}]",
+        c.time
+    );
+    // (b) At the reported time, the named pair is closer than δ.
+    let index = |name: &str| NAMES.iter().position(|n| *n == name).unwrap();
+    let pair = (index(&c.bodies[0]), index(&c.bodies[1]));
+    prop_assert!(
+        spec.pairs().contains(&pair),
+        "reported pair {:?} is not one of the scene's pairs in report order",
+        c.bodies
+    );
+    let d = spec.distance(pair, c.time);
+    prop_assert!(
+        d < DELTA + EPS,
+        "contact reported at t = {} but the distance there is {d:e} >= δ",
+        c.time
+    );
+    prop_assert!(
+        (d - c.distance).abs() <= EPS,
+        "reported distance {:e}, exact {d:e}",
+        c.distance
+    );
+    // (c) Not later than the earliest sampled contact, up to the time tolerance.
+    if let Some((t, d)) = first_sampled {
+        prop_assert!(
+            c.time <= t + report.time_tol + slack,
+            "first contact reported at {}, but distance {d:e} at t = {t} (tol {:e})",
+            c.time,
+            report.time_tol
+        );
+    }
+    // The certified prefix ends within the time tolerance before the contact.
+    prop_assert!(
+        report.safe_until <= c.time && c.time - report.safe_until <= report.time_tol + slack,
+        "safe_until {} vs contact time {} (tol {:e})",
+        report.safe_until,
+        c.time,
+        report.time_tol
+    );
+    Ok(())
+}
+
+/// The same report on one thread and, three times, on four.
+fn same_on_any_threads(
+    scene: &Scene,
+    opts: &CheckOptions,
+    report: &CheckReport,
+) -> Result<(), TestCaseError> {
     let (one, four) = pools();
-    let serial = one.install(|| check(&scene, &opts));
-    prop_assert_eq!(&serial, &report, "1 thread vs the global pool");
+    let serial = one.install(|| check(scene, opts));
+    prop_assert_eq!(&serial, report, "1 thread vs the global pool");
     for _ in 0..3 {
-        let parallel: CheckReport = four.install(|| check(&scene, &opts));
+        let parallel: CheckReport = four.install(|| check(scene, opts));
         prop_assert_eq!(&parallel, &serial, "4 threads vs 1 thread");
     }
     Ok(())

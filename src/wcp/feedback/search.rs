@@ -448,11 +448,32 @@ impl Search<'_> {
                 made.push(child);
             }
         }
-        // Checked first, then ranked: the best child continues the parent's line, every
-        // other one is a discrepancy.
         self.check_all(&made, progress);
+        self.rank_and_queue(made, depth);
+        if self.opts.search.remedies.resequence {
+            let parent = Node {
+                routes,
+                conflicts,
+                legs: default_legs(self.cell.robots.len()),
+                robots: Vec::new(),
+                makespan: blind_makespan,
+                parent: Some(id),
+                remedy: Some(Remedy::RESEQUENCE),
+                depth,
+                discrepancies: discrepancies + 1,
+                deviated_at: depth,
+                pending: None,
+                outcome: None,
+            };
+            self.queue_resequencing(parent, &c);
+        }
+    }
+
+    /// Ranks checked children, best first: the best continues the parent's line, every other
+    /// one is a discrepancy; the colliding ones are queued.
+    fn rank_and_queue(&mut self, made: Vec<usize>, depth: usize) {
         let later = |k: usize| self.collision(k).map_or(f64::INFINITY, |c| c.time);
-        let mut ranked: Vec<usize> = made.clone();
+        let mut ranked: Vec<usize> = made;
         ranked.sort_by(|&a, &b| {
             let (na, nb) = (&self.nodes[a], &self.nodes[b]);
             na.makespan
@@ -469,31 +490,23 @@ impl Search<'_> {
                 self.enqueue(k);
             }
         }
-        if let (true, Some(b), Some(sb)) = (
-            self.opts.search.remedies.resequence,
-            c.robots.1,
-            c.segments.1,
-        ) {
-            let conflict = Conflict {
-                a: (c.robots.0, c.segments.0.activity.step()),
-                b: (b, sb.activity.step()),
-            };
-            let pending = self.add(Node {
-                routes,
-                conflicts,
-                legs: default_legs(self.cell.robots.len()),
-                robots: Vec::new(),
-                makespan: blind_makespan,
-                parent: Some(id),
-                remedy: Some(Remedy::RESEQUENCE),
-                depth,
-                discrepancies: discrepancies + 1,
-                deviated_at: depth,
-                pending: Some(conflict),
-                outcome: None,
-            });
-            self.enqueue(pending);
-        }
+    }
+
+    /// Queues `node`, a re-sequencing that forbids collision `c`'s conflict (the sequencer
+    /// plans it when it is taken), if the collision is between two robots at known steps.
+    fn queue_resequencing(&mut self, node: Node, c: &Collision) {
+        let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
+            return;
+        };
+        let conflict = Conflict {
+            a: (c.robots.0, c.segments.0.activity.step()),
+            b: (b, sb.activity.step()),
+        };
+        let pending = self.add(Node {
+            pending: Some(conflict),
+            ..node
+        });
+        self.enqueue(pending);
     }
 
     /// The result for node `id`: its schedule, and the rounds from the root to it.
