@@ -159,19 +159,7 @@ pub fn certified_move(
     obstacles: &[Body],
 ) -> Result<PlannedMove, MoveFailure> {
     let shapes: Vec<_> = cell.obstacles.iter().map(|o| o.shape.clone()).collect();
-    plan_and_certify(cell, r, from, to, planner, &shapes, obstacles)
-}
-
-fn plan_and_certify(
-    cell: &Cell,
-    r: usize,
-    from: usize,
-    to: usize,
-    planner: &PlannerOptions,
-    shapes: &[ConvexPolygon],
-    obstacles: &[Body],
-) -> Result<PlannedMove, MoveFailure> {
-    let planned = plan_only(cell, r, from, to, planner, shapes)?;
+    let planned = plan_only(cell, r, from, to, planner, &shapes)?;
     certify(cell, r, &planned.samples, obstacles)?;
     Ok(planned)
 }

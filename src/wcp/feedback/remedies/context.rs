@@ -3,9 +3,6 @@
 //! helpers that find a leg's window, its nodes and pieces, and make the changed schedule.
 
 use crate::cell::Cell;
-use crate::geometry::ConvexPolygon;
-use crate::motion::Pose;
-use crate::planning::{PlannedMove, Primitive};
 use crate::wcp::feedback::clearing::{clears, least};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
@@ -39,23 +36,6 @@ pub(crate) struct Child {
 impl<'a> Ctx<'a> {
     pub fn new(cell: &'a Cell, moves: &'a MoveStore, opts: &'a SolveOptions) -> Self {
         Ctx { cell, moves, opts }
-    }
-
-    /// Times primitives for robot `r` as the planner would.
-    pub(super) fn timed(&self, r: usize, primitives: &[Primitive]) -> Arc<PlannedMove> {
-        self.moves.timed(r, primitives)
-    }
-
-    /// Robot `r`'s fastest move from `from` to `to` around the fixtures and `extra`,
-    /// certified clear of the fixtures; `None` if there is none (see [`MoveStore::between`]).
-    pub(super) fn plan(
-        &self,
-        r: usize,
-        from: Pose,
-        to: Pose,
-        extra: &[ConvexPolygon],
-    ) -> Option<Arc<PlannedMove>> {
-        self.moves.between(r, from, to, extra)
     }
 
     /// Robot `x`'s schedule with leg `m` replaced; `None` if it cannot be timed.
@@ -186,7 +166,7 @@ pub(super) fn pieces_of(ctx: &Ctx, view: &View, x: usize, m: usize) -> Option<Ve
             let (from, to) = leg_nodes(view, x, m);
             let planned = ctx.moves.get(x, from, to).ok()?;
             Some(vec![Piece::Go {
-                motion: ctx.timed(x, &planned.primitives),
+                motion: ctx.moves.timed(x, &planned.primitives),
                 scale: 1.0,
             }])
         }

@@ -89,7 +89,7 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let old = leg(view.legs, side.x, m).clone();
     let tried = windows.into_iter().filter_map(|(w0, w1)| {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
-        let motion = ctx.plan(side.x, a, b, &region)?;
+        let motion = ctx.moves.between(side.x, a, b, &region)?;
         if matches!(current.as_slice(), [Piece::Go { motion: old, .. }] if old.path == motion.path)
         {
             return None;

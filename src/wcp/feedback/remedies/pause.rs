@@ -89,7 +89,10 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let horizons = horizons(view, side.y, &side.sy, t0);
     let tried = PAUSE_BACKOFF.iter().filter_map(|back| {
         let (before, after) = split_chain(&motion.primitives, at - back * reach)?;
-        let (first, second) = (ctx.timed(side.x, &before), ctx.timed(side.x, &after));
+        let (first, second) = (
+            ctx.moves.timed(side.x, &before),
+            ctx.moves.timed(side.x, &after),
+        );
         let obstacles = ctx.moves.obstacles();
         for half in [&first, &second] {
             certify(ctx.cell, side.x, &half.samples, obstacles).ok()?;

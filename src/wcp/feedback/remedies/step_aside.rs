@@ -104,8 +104,8 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let tried = parking_poses(ctx, view, x, side.y, q, (t.min(t0.max(0.0)), until))
         .into_iter()
         .filter_map(|p| {
-            let there = ctx.plan(x, a, p, &[])?;
-            let back = ctx.plan(x, p, b, &[])?;
+            let there = ctx.moves.between(x, a, p, &[])?;
+            let back = ctx.moves.between(x, p, b, &[])?;
             Some((p, there, back))
         })
         .take(PARK_TRIES)
