@@ -10,13 +10,13 @@ use std::path::Path;
 /// The three ways of giving a body's geometry, as read; [`BodyShape::parts`] checks that
 /// exactly one is there.
 #[derive(Default)]
-pub(super) struct BodyShape {
-    pub shape: Option<Vec<Point>>,
-    pub parts: Option<Vec<Vec<Point>>>,
-    pub outline: Option<Vec<Point>>,
+pub(super) struct BodyShape<'a> {
+    pub shape: Option<&'a [Point]>,
+    pub parts: Option<&'a [Vec<Point>]>,
+    pub outline: Option<&'a [Point]>,
 }
 
-impl BodyShape {
+impl BodyShape<'_> {
     /// The body's region as convex parts (one for a `shape`), validated; `at` is the body's
     /// field path (`robots[2]`), warnings get the repairs.
     pub fn parts(
@@ -52,12 +52,12 @@ impl BodyShape {
         }
         let hull_error =
             |field: String| move |e| error(field, format!("the convex hull of the parts: {e}"));
-        if let Some(points) = &self.shape {
+        if let Some(points) = self.shape {
             let field = format!("{at}.shape");
             let shape = polygon(file, body, &field, points, warnings)?;
             return Parts::new(vec![shape]).map_err(hull_error(field));
         }
-        if let Some(list) = &self.parts {
+        if let Some(list) = self.parts {
             let field = format!("{at}.parts");
             if list.is_empty() {
                 return Err(error(
@@ -72,7 +72,7 @@ impl BodyShape {
                 .collect::<Result<Vec<_>, _>>()?;
             return Parts::new(parts).map_err(hull_error(field));
         }
-        let points = self.outline.as_deref().unwrap_or_default();
+        let points = self.outline.unwrap_or_default();
         let field = format!("{at}.outline");
         let outline = Outline::new(&vertices(file, body, &field, points)?)
             .map_err(|e| outline_error(file, body, &field, e))?;

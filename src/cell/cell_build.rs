@@ -6,6 +6,7 @@ use super::cell_file::{allowed_robots, check_duration, check_limits, check_name,
 use super::model::{Cell, CellObstacle, CellRobot, Task};
 use super::InputError;
 use crate::collision::check_delta;
+use crate::geometry::{ConvexPolygon, Parts};
 use crate::motion::Pose;
 use std::path::PathBuf;
 
@@ -24,12 +25,13 @@ impl Cell {
     /// cell.add_robot(CellRobot {
     ///     name: "R1".into(),
     ///     shape: square.clone(),
+    ///     parts: None,
     ///     home: Pose::new(0.0, 0.0, 0.0),
     ///     max_speed: 1.0,
     ///     max_accel: 2.0,
     ///     max_turn_rate: 1.0,
     /// })?
-    /// .add_obstacle(CellObstacle { name: "post".into(), shape: square.translated(&Vec2::new(3.0, 3.0)) })?
+    /// .add_obstacle(CellObstacle { name: "post".into(), shape: square.translated(&Vec2::new(3.0, 3.0)), parts: None })?
     /// .add_task("weld", Pose::new(4.0, 0.0, 0.0), 1.5, None)?
     /// .validate()?;
     /// let opts = SolveOptions::default();
@@ -51,7 +53,8 @@ impl Cell {
     }
 
     /// Adds a robot: its name new and non-empty, its home finite, its limits positive and
-    /// finite.
+    /// finite. A robot with `parts` gets their convex hull as its `shape` (a convex union, as
+    /// its one shape).
     ///
     /// ```
     /// use workcell::cell::{Cell, CellRobot};
@@ -61,6 +64,7 @@ impl Cell {
     /// let robot = CellRobot {
     ///     name: "R1".into(),
     ///     shape: ConvexPolygon::rectangle(1.0, 1.0)?,
+    ///     parts: None,
     ///     home: Pose::new(0.0, 0.0, 0.0),
     ///     max_speed: 1.0,
     ///     max_accel: 0.0,
@@ -75,11 +79,17 @@ impl Cell {
         self.check_new_name(&robot.name, &at, "robot")?;
         self.check_pose(&robot.name, &format!("{at}.home"), &robot.home)?;
         check_limits(&self.file, &at, &robot)?;
-        self.robots.push(robot);
+        let (shape, parts) = hull_and_parts(robot.shape, robot.parts);
+        self.robots.push(CellRobot {
+            shape,
+            parts,
+            ..robot
+        });
         Ok(self)
     }
 
-    /// Adds an obstacle (its shape in world coordinates) under a new, non-empty name.
+    /// Adds an obstacle (its shape in world coordinates) under a new, non-empty name. An
+    /// obstacle with `parts` gets their convex hull as its `shape`.
     ///
     /// ```
     /// use workcell::cell::{Cell, CellObstacle};
@@ -87,15 +97,20 @@ impl Cell {
     ///
     /// let post = ConvexPolygon::rectangle(1.0, 1.0)?;
     /// let mut cell = Cell::new(0.01)?;
-    /// cell.add_obstacle(CellObstacle { name: "post".into(), shape: post.clone() })?;
-    /// let e = cell.add_obstacle(CellObstacle { name: "post".into(), shape: post }).unwrap_err();
+    /// cell.add_obstacle(CellObstacle { name: "post".into(), shape: post.clone(), parts: None })?;
+    /// let e = cell.add_obstacle(CellObstacle { name: "post".into(), shape: post, parts: None }).unwrap_err();
     /// assert_eq!(e.field, "obstacles[1].name");
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn add_obstacle(&mut self, obstacle: CellObstacle) -> Result<&mut Cell, InputError> {
         let at = format!("obstacles[{}]", self.obstacles.len());
         self.check_new_name(&obstacle.name, &at, "obstacle")?;
-        self.obstacles.push(obstacle);
+        let (shape, parts) = hull_and_parts(obstacle.shape, obstacle.parts);
+        self.obstacles.push(CellObstacle {
+            shape,
+            parts,
+            ..obstacle
+        });
         Ok(self)
     }
 
@@ -151,13 +166,14 @@ impl Cell {
     /// cell.add_robot(CellRobot {
     ///     name: "R1".into(),
     ///     shape: square.clone(),
+    ///     parts: None,
     ///     home: Pose::new(0.0, 0.0, 0.0),
     ///     max_speed: 1.0,
     ///     max_accel: 2.0,
     ///     max_turn_rate: 1.0,
     /// })?;
     /// // A post over R1's home.
-    /// cell.add_obstacle(CellObstacle { name: "post".into(), shape: square.translated(&Vec2::new(0.5, 0.0)) })?;
+    /// cell.add_obstacle(CellObstacle { name: "post".into(), shape: square.translated(&Vec2::new(0.5, 0.0)), parts: None })?;
     /// assert_eq!(cell.validate().unwrap_err().field, "robots[0].home");
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -196,5 +212,15 @@ impl Cell {
             pose.pos.x, pose.pos.y, pose.theta
         );
         Err(self.error(Some(body), field, reason))
+    }
+}
+
+/// A body's shape and parts as the cell keeps them: the hull of parts that are not convex
+/// with the parts, else one convex shape.
+fn hull_and_parts(shape: ConvexPolygon, parts: Option<Parts>) -> (ConvexPolygon, Option<Parts>) {
+    match parts {
+        Some(p) if !p.is_convex() => (p.hull().clone(), Some(p)),
+        Some(p) => (p.hull().clone(), None),
+        None => (shape, None),
     }
 }

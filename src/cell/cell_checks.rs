@@ -2,7 +2,7 @@
 //! that keep the boundary, homes clear of obstacles and of each other, tasks outside obstacles.
 
 use super::time_axis::check_time_axis;
-use super::{Cell, CellObstacle, CellRobot, InputError, MAX_COORDINATE_OVER_DELTA};
+use super::{Cell, CellObstacle, InputError, MAX_COORDINATE_OVER_DELTA};
 use crate::collision::check_shape_repairs;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::motion::Pose;
@@ -26,7 +26,9 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
         let err = |field: &str, reason: String| {
             cell.error(Some(&r.name), format!("{at}.{field}"), reason)
         };
-        check_shape_repairs(&r.shape, &r.name, &format!("{at}.shape"), delta, file)?;
+        for (field, piece) in piece_fields(&at, r.pieces(), r.parts.is_some()) {
+            check_shape_repairs(piece, &r.name, &field, delta, file)?;
+        }
         let radius = r.shape.radius();
         if radius > limit {
             return Err(err("shape", too_large(radius, delta)));
@@ -40,7 +42,9 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
     }
     for (k, o) in cell.obstacles.iter().enumerate() {
         let at = format!("obstacles[{k}]");
-        check_shape_repairs(&o.shape, &o.name, &format!("{at}.shape"), delta, file)?;
+        for (field, piece) in piece_fields(&at, o.pieces(), o.parts.is_some()) {
+            check_shape_repairs(piece, &o.name, &field, delta, file)?;
+        }
         let extent = o
             .shape
             .vertices()
@@ -60,7 +64,7 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
 fn check_homes(cell: &Cell) -> Result<(), InputError> {
     let delta = cell.delta;
     for (k, r) in cell.robots.iter().enumerate() {
-        if let Some((o, d)) = nearest_obstacle(&r.shape, r.home, &cell.obstacles, delta) {
+        if let Some((o, d)) = nearest_obstacle(r.pieces(), r.home, &cell.obstacles, delta) {
             let reason = format!(
                 "the robot at its home is {d:.3e} from obstacle \"{}\", closer than delta = {delta}",
                 cell.obstacles[o].name
@@ -70,8 +74,7 @@ fn check_homes(cell: &Cell) -> Result<(), InputError> {
     }
     for (k, r) in cell.robots.iter().enumerate() {
         for other in &cell.robots[..k] {
-            let d = closest_features(&placed(r), &placed(other), None, &WalkTolerances::default())
-                .distance;
+            let d = pieces_distance((r.pieces(), r.home), (other.pieces(), other.home));
             if d < delta {
                 let reason = format!(
                     "at home the robot is {d:.3e} from robot \"{}\" at its home, closer than delta = {delta}",
@@ -84,8 +87,35 @@ fn check_homes(cell: &Cell) -> Result<(), InputError> {
     Ok(())
 }
 
-fn placed(r: &CellRobot) -> Posed<'_> {
-    Posed::new(&r.shape, r.home.pos.x, r.home.pos.y, r.home.theta)
+/// Each convex piece of a body with the field that names it: `shape`, or `parts[i]`.
+fn piece_fields<'a>(
+    at: &'a str,
+    pieces: &'a [ConvexPolygon],
+    of_parts: bool,
+) -> impl Iterator<Item = (String, &'a ConvexPolygon)> + 'a {
+    pieces.iter().enumerate().map(move |(i, p)| {
+        let field = if of_parts {
+            format!("{at}.parts[{i}]")
+        } else {
+            format!("{at}.shape")
+        };
+        (field, p)
+    })
+}
+
+/// The distance between two bodies of convex pieces placed at their poses: the least over
+/// pairs of pieces (0 where they overlap).
+fn pieces_distance((a, pa): (&[ConvexPolygon], Pose), (b, pb): (&[ConvexPolygon], Pose)) -> f64 {
+    let tol = WalkTolerances::default();
+    let mut least = f64::INFINITY;
+    for x in a {
+        let px = Posed::new(x, pa.pos.x, pa.pos.y, pa.theta);
+        for y in b {
+            let py = Posed::new(y, pb.pos.x, pb.pos.y, pb.theta);
+            least = least.min(closest_features(&px, &py, None, &tol).distance);
+        }
+    }
+    least
 }
 
 /// Task poses within what f64 resolves at δ (the angle at the rim of the largest allowed
@@ -102,7 +132,7 @@ fn check_tasks(cell: &Cell) -> Result<(), InputError> {
         if let Some(o) = cell
             .obstacles
             .iter()
-            .find(|o| contains(&o.shape, &pose.pos))
+            .find(|o| o.pieces().iter().any(|p| contains(p, &pose.pos)))
         {
             return Err(err(format!(
                 "the task pose is inside obstacle \"{}\"",
@@ -147,15 +177,14 @@ fn contains(shape: &ConvexPolygon, p: &Vec2) -> bool {
 
 /// The first obstacle closer than δ to the robot placed at `pose`, with its distance.
 fn nearest_obstacle(
-    shape: &ConvexPolygon,
+    pieces: &[ConvexPolygon],
     pose: Pose,
     obstacles: &[CellObstacle],
     delta: f64,
 ) -> Option<(usize, f64)> {
-    let robot = Posed::new(shape, pose.pos.x, pose.pos.y, pose.theta);
+    let origin = Pose::new(0.0, 0.0, 0.0);
     obstacles.iter().enumerate().find_map(|(k, o)| {
-        let obstacle = Posed::new(&o.shape, 0.0, 0.0, 0.0);
-        let d = closest_features(&robot, &obstacle, None, &WalkTolerances::default()).distance;
+        let d = pieces_distance((pieces, pose), (o.pieces(), origin));
         (d < delta).then_some((k, d))
     })
 }

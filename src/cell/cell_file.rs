@@ -1,13 +1,13 @@
 //! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
 
+use super::body_shape::BodyShape;
 use super::cell_checks::check_geometry;
 use super::model::{Cell, CellObstacle, CellRobot, Task};
 use super::object_only::object_only;
-use super::reading::{delta, document, polygon, read_file, Point};
+use super::reading::{delta, document, read_file, Point};
 use super::InputError;
-use crate::geometry::Vec2;
+use crate::geometry::{ConvexPolygon, Parts, Vec2};
 use crate::motion::Pose;
-use serde::de::IgnoredAny;
 use serde::Deserialize;
 use std::collections::HashMap;
 use std::path::Path;
@@ -30,9 +30,9 @@ struct RawRobot {
     #[serde(default)]
     shape: Option<Vec<Point>>,
     #[serde(default)]
-    parts: Option<IgnoredAny>,
+    parts: Option<Vec<Vec<Point>>>,
     #[serde(default)]
-    outline: Option<IgnoredAny>,
+    outline: Option<Vec<Point>>,
     home: Vec<f64>,
     max_speed: f64,
     max_accel: f64,
@@ -46,9 +46,9 @@ struct RawObstacle {
     #[serde(default)]
     shape: Option<Vec<Point>>,
     #[serde(default)]
-    parts: Option<IgnoredAny>,
+    parts: Option<Vec<Vec<Point>>>,
     #[serde(default)]
-    outline: Option<IgnoredAny>,
+    outline: Option<Vec<Point>>,
 }
 
 #[derive(Deserialize)]
@@ -180,12 +180,19 @@ fn read_robot(
     let at = format!("robots[{k}]");
     let err = |field: String, reason: String| InputError::new(file, Some(&r.name), field, reason);
     names.claim(file, &r.name, &at, "robot")?;
-    let shape = convex_only(file, &r.name, &at, &r.shape, [&r.parts, &r.outline])?;
-    let shape = polygon(file, &r.name, &format!("{at}.shape"), shape, warnings)?;
+    let (shape, parts) = body_shape(
+        file,
+        &r.name,
+        &at,
+        [&r.shape, &r.outline],
+        &r.parts,
+        warnings,
+    )?;
     let home = pose(&r.home).map_err(|reason| err(format!("{at}.home"), reason))?;
     let robot = CellRobot {
         name: r.name.clone(),
         shape,
+        parts,
         home,
         max_speed: r.max_speed,
         max_accel: r.max_accel,
@@ -224,45 +231,39 @@ fn read_obstacle(
 ) -> Result<CellObstacle, InputError> {
     let at = format!("obstacles[{k}]");
     names.claim(file, &o.name, &at, "obstacle")?;
-    let shape = convex_only(file, &o.name, &at, &o.shape, [&o.parts, &o.outline])?;
-    let shape = polygon(file, &o.name, &format!("{at}.shape"), shape, warnings)?;
+    let (shape, parts) = body_shape(
+        file,
+        &o.name,
+        &at,
+        [&o.shape, &o.outline],
+        &o.parts,
+        warnings,
+    )?;
     Ok(CellObstacle {
         name: o.name.clone(),
         shape,
+        parts,
     })
 }
 
-/// A cell's body is one convex `shape` until `solve` plans bodies of parts (contract
-/// section 5): `parts` and `outline` are refused by name, not ignored.
-fn convex_only<'a>(
+/// A cell body's geometry (contract sections 1 and 5): exactly one of `shape`, `parts` or
+/// `outline`; its convex hull, and its parts when it is not convex.
+fn body_shape(
     file: &Path,
     body: &str,
     at: &str,
-    shape: &'a Option<Vec<Point>>,
-    [parts, outline]: [&Option<IgnoredAny>; 2],
-) -> Result<&'a [Point], InputError> {
-    let refuse = |field: &str, reason: &str| {
-        Err(InputError::new(
-            file,
-            Some(body),
-            format!("{at}.{field}"),
-            reason,
-        ))
+    [shape, outline]: [&Option<Vec<Point>>; 2],
+    parts: &Option<Vec<Vec<Point>>>,
+    warnings: &mut Vec<String>,
+) -> Result<(ConvexPolygon, Option<Parts>), InputError> {
+    let given = BodyShape {
+        shape: shape.as_deref(),
+        parts: parts.as_deref(),
+        outline: outline.as_deref(),
     };
-    for (key, given) in [("parts", parts.is_some()), ("outline", outline.is_some())] {
-        if given {
-            return refuse(
-                key,
-                "`workcell solve` does not plan bodies of parts yet: give one convex `shape` \
-                 (a fixture may be given as one obstacle per convex part); `workcell check` \
-                 takes `parts` and `outline`",
-            );
-        }
-    }
-    match shape {
-        Some(points) => Ok(points),
-        None => refuse("shape", "missing field `shape`"),
-    }
+    let parts = given.parts(file, body, at, warnings)?;
+    let hull = parts.hull().clone();
+    Ok((hull, (!parts.is_convex()).then_some(parts)))
 }
 
 fn read_task(

@@ -3,8 +3,8 @@
 
 use super::InputError;
 use crate::collision::Body;
-use crate::geometry::ConvexPolygon;
-use crate::motion::Pose;
+use crate::geometry::{ConvexPolygon, Parts};
+use crate::motion::{Pose, Trajectory};
 use std::path::PathBuf;
 
 /// A robot of the cell: its shape, home and limits.
@@ -12,8 +12,12 @@ use std::path::PathBuf;
 pub struct CellRobot {
     /// Name, unique among robots, obstacles and tasks.
     pub name: String,
-    /// Shape in the body frame (origin: the rotation centre G).
+    /// Shape in the body frame (origin: the rotation centre G): the convex hull of `parts`
+    /// when the robot is made of parts.
     pub shape: ConvexPolygon,
+    /// The convex parts of a robot that is not convex (given as `parts` or `outline`, in the
+    /// body frame); `None` for one convex `shape`.
+    pub parts: Option<Parts>,
     /// Where the robot starts and ends.
     pub home: Pose,
     /// Largest speed of G.
@@ -29,8 +33,83 @@ pub struct CellRobot {
 pub struct CellObstacle {
     /// Name, unique among robots, obstacles and tasks.
     pub name: String,
-    /// Shape in world coordinates.
+    /// Shape in world coordinates: the convex hull of `parts` when the obstacle is made of
+    /// parts.
     pub shape: ConvexPolygon,
+    /// The convex parts of an obstacle that is not convex (given as `parts` or `outline`, in
+    /// world coordinates); `None` for one convex `shape`.
+    pub parts: Option<Parts>,
+}
+
+impl CellRobot {
+    /// The robot's convex pieces, whose union it is: its parts, or its one shape.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// assert_eq!(cell.robots[0].pieces(), [cell.robots[0].shape.clone()]);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn pieces(&self) -> &[ConvexPolygon] {
+        pieces(&self.shape, &self.parts)
+    }
+
+    /// The robot as a checker body moving along `trajectory` (with its parts).
+    ///
+    /// ```
+    /// use workcell::motion::{Sample, Trajectory};
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let robot = &workcell::cell::load_cell(path.as_ref())?.cell.robots[0];
+    /// let still = Trajectory::new(vec![Sample::at(0.0, robot.home)])?;
+    /// let body = robot.body(still);
+    /// assert_eq!((body.name.as_str(), &body.shape), (robot.name.as_str(), &robot.shape));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn body(&self, trajectory: Trajectory) -> Body {
+        match &self.parts {
+            Some(parts) => Body::robot_of_parts(self.name.clone(), parts.clone(), trajectory),
+            None => Body::robot(self.name.clone(), self.shape.clone(), trajectory),
+        }
+    }
+}
+
+impl CellObstacle {
+    /// The obstacle's convex pieces in world coordinates: its parts, or its one shape.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/bay-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// let (bay, post) = (&cell.obstacles[0], &cell.obstacles[1]);
+    /// assert_eq!(bay.pieces().len(), 3); // the U's outline, cut into convex parts
+    /// assert_eq!(post.pieces(), [post.shape.clone()]);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn pieces(&self) -> &[ConvexPolygon] {
+        pieces(&self.shape, &self.parts)
+    }
+
+    /// The obstacle as a checker body (with its parts).
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/bay-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// let bay = cell.obstacles[0].body();
+    /// assert!(!bay.is_robot() && bay.parts.is_some());
+    /// assert!(cell.obstacles[1].body().parts.is_none());
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn body(&self) -> Body {
+        match &self.parts {
+            Some(parts) => Body::obstacle_of_parts(self.name.clone(), parts),
+            None => Body::obstacle(self.name.clone(), &self.shape),
+        }
+    }
+}
+
+fn pieces<'a>(shape: &'a ConvexPolygon, parts: &'a Option<Parts>) -> &'a [ConvexPolygon] {
+    parts
+        .as_ref()
+        .map_or(std::slice::from_ref(shape), |p| p.parts())
 }
 
 /// A task: a pose to hold for a duration, by one of the allowed robots.
@@ -74,10 +153,7 @@ impl Cell {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn obstacle_bodies(&self) -> Vec<Body> {
-        self.obstacles
-            .iter()
-            .map(|o| Body::obstacle(o.name.clone(), &o.shape))
-            .collect()
+        self.obstacles.iter().map(CellObstacle::body).collect()
     }
 
     /// An error about this cell's file.

@@ -161,9 +161,9 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
         let at = format!("robots[{k}]");
         check_name(file, &r.name, &at, &mut names)?;
         let shape = BodyShape {
-            shape: r.shape,
-            parts: r.parts,
-            outline: r.outline,
+            shape: r.shape.as_deref(),
+            parts: r.parts.as_deref(),
+            outline: r.outline.as_deref(),
         };
         let parts = shape.parts(file, &r.name, &at, &mut warnings)?;
         let trajectory = Trajectory::with_missing_velocities(r.trajectory.0).map_err(|e| {
@@ -187,9 +187,9 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
         let at = format!("obstacles[{k}]");
         check_name(file, &o.name, &at, &mut names)?;
         let shape = BodyShape {
-            shape: o.shape,
-            parts: o.parts,
-            outline: o.outline,
+            shape: o.shape.as_deref(),
+            parts: o.parts.as_deref(),
+            outline: o.outline.as_deref(),
         };
         let parts = shape.parts(file, &o.name, &at, &mut warnings)?;
         bodies.push(Body::obstacle_of_parts(o.name, &parts));

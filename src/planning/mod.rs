@@ -1,7 +1,8 @@
 //! Point-to-point moves: the fastest obstacle-free move of one robot between two poses.
 //!
-//! [`plan_move`] plans a move of a convex robot among fixed convex obstacles and returns it
-//! as time samples that the checker ([`crate::collision`]) certifies.
+//! [`plan_move`] plans a move of a robot (one convex polygon, or the union of convex parts)
+//! among fixed convex obstacles (a fixture of parts gives each part) and returns it as time
+//! samples that the checker ([`crate::collision`]) certifies.
 //!
 //! # Motion model
 //!
@@ -19,7 +20,10 @@
 //!   [`rotation_step`](PlannerOptions::rotation_step) or less along its arc at radius
 //!   `|v| / cos(step/2)`, so that the hull circumscribes every arc. D is a 16-gon
 //!   circumscribing the disc. G may touch a grown obstacle but not enter its interior;
-//!   the margin absorbs the rounding of the construction and of the boundary tests.
+//!   the margin absorbs the rounding of the construction and of the boundary tests. A
+//!   robot of parts P₁ … Pₖ is the union of them, free where each part is: every obstacle
+//!   is grown by each part's S in turn (k grown obstacles per obstacle), so the gap between
+//!   two fingers stays open where the hull of the robot would close it.
 //! * **Path.** If the straight segment from start to goal crosses no grown obstacle it is
 //!   the path. Otherwise the path is the fastest one in the visibility graph of the grown
 //!   obstacles' vertices, start and goal (built over the obstacles that block the path
@@ -35,7 +39,7 @@
 //!   the segment is short; see [`rest_to_rest_time`]). The graph's edge weights are these
 //!   times, so the graph search minimises the translation time `T_trans`.
 //! * **Rotation.** The angular acceleration is limited to `α = max_accel / radius`, with
-//!   `radius` the robot's [`radius`](ConvexPolygon::radius), so that no point of the robot
+//!   `radius` the robot's [`radius`](ConvexPolygon::radius) (its farthest part's), so that no point of the robot
 //!   accelerates tangentially by more than `max_accel`; the turn rate is limited to
 //!   `max_turn_rate`. The rotation's fastest time is `T_rot = rest_to_rest_time(|Δθ|,
 //!   max_turn_rate, α)`.
@@ -70,7 +74,7 @@
 //! let limits = RobotLimits { max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 };
 //! let pose = |x, y| Pose { pos: Vec2::new(x, y), theta: 0.0 };
 //! let wall = square(5.0, 0.0, 1.0);
-//! let planned = plan_move(&robot, &limits, &[wall], 0.01, pose(0.0, 0.0), pose(10.0, 0.0),
+//! let planned = plan_move(&[robot], &limits, &[wall], 0.01, pose(0.0, 0.0), pose(10.0, 0.0),
 //!     &PlannerOptions::default()).unwrap();
 //! assert!(planned.path.len() > 2); // around the wall
 //! assert_eq!(planned.samples.last().unwrap().pos, Vec2::new(10.0, 0.0));

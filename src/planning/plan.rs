@@ -14,14 +14,15 @@ use crate::motion::Pose;
 /// of the construction, so that paths along a grown obstacle's edge are not rejected.
 const TOL_REL: f64 = 1e-12;
 
-/// Plans the fastest move of the robot `shape` from `from` to `to` that keeps at least
-/// `delta` from every obstacle (convex polygons in world coordinates), under `limits`.
+/// Plans the fastest move of the robot (the union of its convex `pieces`, in its body frame)
+/// from `from` to `to` that keeps at least `delta` from every obstacle (convex polygons in
+/// world coordinates), under `limits`.
 ///
 /// See the [module documentation](super) for the motion model. Errors: invalid limits,
 /// δ, poses or options; a start or goal too close to an obstacle (the first in slice
 /// order); no path.
 pub(super) fn plan_direct(
-    shape: &ConvexPolygon,
+    pieces: &[ConvexPolygon],
     limits: &RobotLimits,
     obstacles: &[ConvexPolygon],
     delta: f64,
@@ -30,18 +31,37 @@ pub(super) fn plan_direct(
     opts: &PlannerOptions,
 ) -> Result<PlannedMove, PlanError> {
     validate(limits, delta, &from, &to, opts)?;
+    if pieces.is_empty() {
+        return Err(PlanError::InvalidArgument {
+            name: "pieces",
+            value: 0.0,
+            expected: "at least one convex piece",
+        });
+    }
     let turn = angle_between(from.theta, to.theta);
 
-    // The region G must avoid: each obstacle grown by the swept robot and the clearance.
+    // The region G must avoid: each obstacle grown by each swept piece of the robot and the
+    // clearance (the robot is the union of its pieces: G is free where every piece is).
     let clearance = delta * (1.0 + opts.clearance_margin);
-    let swept = swept_shape(shape.vertices(), from.theta, turn, opts.rotation_step);
-    // −S is S turned by a half-turn: still counter-clockwise.
-    let reflected: Vec<Vec2> = swept.iter().map(|v| -v).collect();
-    let grow_by = minkowski_sum(&reflected, &disc(clearance));
+    let grow_by: Vec<Vec<Vec2>> = pieces
+        .iter()
+        .map(|piece| {
+            let swept = swept_shape(piece.vertices(), from.theta, turn, opts.rotation_step);
+            // −S is S turned by a half-turn: still counter-clockwise.
+            let reflected: Vec<Vec2> = swept.iter().map(|v| -v).collect();
+            minkowski_sum(&reflected, &disc(clearance))
+        })
+        .collect();
+    // Obstacle k grown by piece j is `grown[k * pieces + j]`.
     let grown: Vec<Grown> = obstacles
         .iter()
-        .map(|o| Grown::new(minkowski_sum(o.vertices(), &grow_by)))
+        .flat_map(|o| {
+            grow_by
+                .iter()
+                .map(|g| Grown::new(minkowski_sum(o.vertices(), g)))
+        })
         .collect();
+    let obstacle_of = |g: usize| g / pieces.len();
     let extent = grown
         .iter()
         .map(Grown::extent)
@@ -49,10 +69,12 @@ pub(super) fn plan_direct(
     // Penetrating a grown obstacle by `tol` still leaves half the margin above δ.
     let tol = (TOL_REL * extent).min(0.5 * delta * opts.clearance_margin);
 
-    if let Some(obstacle) = grown.iter().position(|g| g.contains(&from.pos, tol)) {
+    if let Some(g) = grown.iter().position(|g| g.contains(&from.pos, tol)) {
+        let obstacle = obstacle_of(g);
         return Err(PlanError::StartBlocked { obstacle });
     }
-    if let Some(obstacle) = grown.iter().position(|g| g.contains(&to.pos, tol)) {
+    if let Some(g) = grown.iter().position(|g| g.contains(&to.pos, tol)) {
+        let obstacle = obstacle_of(g);
         return Err(PlanError::GoalBlocked { obstacle });
     }
     let segment_time = |length: f64| rest_to_rest_time(length, limits.max_speed, limits.max_accel);
@@ -85,7 +107,7 @@ pub(super) fn plan_direct(
 
     // A move from a pose to itself is a primitive of no length and no turn: one sample.
     Ok(time_primitive(
-        shape.radius(),
+        radius(pieces),
         limits,
         &Primitive {
             path,
@@ -94,6 +116,11 @@ pub(super) fn plan_direct(
         },
         opts.samples_per_phase,
     ))
+}
+
+/// The robot's radius: the farthest point of any piece from its rotation centre.
+pub(super) fn radius(pieces: &[ConvexPolygon]) -> f64 {
+    pieces.iter().map(ConvexPolygon::radius).fold(0.0, f64::max)
 }
 
 /// Refuses limits, δ, poses and options the model cannot use.
@@ -190,7 +217,7 @@ mod tests {
             max_accel: 0.0,
             ..LIMITS
         };
-        let e = plan_direct(&robot, &bad, &[], 0.1, a, b, &opts).unwrap_err();
+        let e = plan_direct(std::slice::from_ref(&robot), &bad, &[], 0.1, a, b, &opts).unwrap_err();
         assert_eq!(
             e,
             PlanError::InvalidLimits {
@@ -198,13 +225,22 @@ mod tests {
                 value: 0.0
             }
         );
-        let e = plan_direct(&robot, &LIMITS, &[], -1.0, a, b, &opts).unwrap_err();
+        let e = plan_direct(
+            std::slice::from_ref(&robot),
+            &LIMITS,
+            &[],
+            -1.0,
+            a,
+            b,
+            &opts,
+        )
+        .unwrap_err();
         assert!(matches!(
             e,
             PlanError::InvalidArgument { name: "delta", .. }
         ));
         let e = plan_direct(
-            &robot,
+            std::slice::from_ref(&robot),
             &LIMITS,
             &[],
             0.1,
@@ -217,7 +253,8 @@ mod tests {
             rotation_step: 2.0,
             ..opts
         };
-        let e = plan_direct(&robot, &LIMITS, &[], 0.1, a, b, &opts).unwrap_err();
+        let e =
+            plan_direct(std::slice::from_ref(&robot), &LIMITS, &[], 0.1, a, b, &opts).unwrap_err();
         assert!(matches!(
             e,
             PlanError::InvalidArgument {
@@ -231,7 +268,16 @@ mod tests {
     fn no_motion_is_one_sample() {
         let robot = square(0.0, 0.0, 0.5);
         let p = pose(1.0, 2.0, 0.3);
-        let m = plan_direct(&robot, &LIMITS, &[], 0.1, p, p, &PlannerOptions::default()).unwrap();
+        let m = plan_direct(
+            std::slice::from_ref(&robot),
+            &LIMITS,
+            &[],
+            0.1,
+            p,
+            p,
+            &PlannerOptions::default(),
+        )
+        .unwrap();
         assert_eq!(m.duration, 0.0);
         assert_eq!(m.samples.len(), 1);
         assert_eq!((m.samples[0].pos, m.samples[0].theta), (p.pos, p.theta));
@@ -241,7 +287,16 @@ mod tests {
     fn pure_rotation_takes_the_rotation_time() {
         let robot = square(0.0, 0.0, 0.5);
         let (a, b) = (pose(1.0, 2.0, 0.0), pose(1.0, 2.0, 2.0));
-        let m = plan_direct(&robot, &LIMITS, &[], 0.1, a, b, &PlannerOptions::default()).unwrap();
+        let m = plan_direct(
+            std::slice::from_ref(&robot),
+            &LIMITS,
+            &[],
+            0.1,
+            a,
+            b,
+            &PlannerOptions::default(),
+        )
+        .unwrap();
         let alpha = LIMITS.max_accel / robot.radius();
         assert_eq!(
             m.duration,
@@ -260,7 +315,7 @@ mod tests {
         let opts = PlannerOptions::default();
         let (a, b) = (pose(0.0, 0.0, 0.0), pose(0.0, -3.0, 0.0));
         assert!(plan_direct(
-            &robot,
+            std::slice::from_ref(&robot),
             &LIMITS,
             std::slice::from_ref(&wall),
             0.01,
@@ -270,7 +325,16 @@ mod tests {
         )
         .is_ok());
         let turned = pose(0.0, -3.0, 0.8);
-        let e = plan_direct(&robot, &LIMITS, &[wall], 0.01, a, turned, &opts).unwrap_err();
+        let e = plan_direct(
+            std::slice::from_ref(&robot),
+            &LIMITS,
+            &[wall],
+            0.01,
+            a,
+            turned,
+            &opts,
+        )
+        .unwrap_err();
         assert_eq!(e, PlanError::StartBlocked { obstacle: 0 });
     }
 }

@@ -224,7 +224,7 @@ impl PlannedMove {
     /// let robot = ConvexPolygon::rectangle(1.0, 1.0)?;
     /// let limits = RobotLimits { max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 };
     /// let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(3.0, 4.0, 1.0));
-    /// let fast = plan_move(&robot, &limits, &[], 0.01, from, to, &PlannerOptions::default())?;
+    /// let fast = plan_move(&[robot], &limits, &[], 0.01, from, to, &PlannerOptions::default())?;
     /// let slow = fast.slowed(2.0);
     /// assert_eq!(slow.duration, 2.0 * fast.duration);
     /// for (s, f) in slow.samples.iter().zip(&fast.samples) {

@@ -8,7 +8,7 @@
 //! 4 robot radii around them; the fastest plan wins. Each leg is an ordinary move, so all
 //! the clearance guarantees hold leg by leg.
 
-use super::plan::plan_direct;
+use super::plan::{plan_direct, radius};
 use super::timed::chain;
 use super::{angle_between, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use crate::geometry::{ConvexPolygon, Vec2};
@@ -19,8 +19,9 @@ const DIRECTIONS: usize = 8;
 /// Ring radii, in robot radii.
 const RINGS: [f64; 3] = [1.0, 2.0, 4.0];
 
-/// Plans the fastest move of the robot `shape` from `from` to `to` that keeps at least
-/// `delta` from every obstacle (convex polygons in world coordinates), under `limits`.
+/// Plans the fastest move of the robot (the union of its convex `pieces`, in its body frame:
+/// one for a convex robot) from `from` to `to` that keeps at least `delta` from every
+/// obstacle (convex polygons in world coordinates), under `limits`.
 ///
 /// See the [module documentation](super) for the motion model. When the move cannot turn
 /// on the way (its start or goal too close to an obstacle for the rotation, or no path for
@@ -37,17 +38,17 @@ const RINGS: [f64; 3] = [1.0, 2.0, 4.0];
 /// let opts = PlannerOptions::default();
 /// let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(10.0, 0.0, 0.0));
 /// // Nothing in the way: straight, rest to rest at the limits.
-/// let straight = plan_move(&robot, &limits, &[], 0.01, from, to, &opts)?;
+/// let straight = plan_move(std::slice::from_ref(&robot), &limits, &[], 0.01, from, to, &opts)?;
 /// assert_eq!(straight.path, [Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)]);
 /// assert_eq!(straight.duration, rest_to_rest_time(10.0, 1.0, 2.0));
 /// // A goal inside an obstacle cannot be reached.
 /// let post = ConvexPolygon::from_vertices(&[[9.0, -1.0], [11.0, -1.0], [11.0, 1.0], [9.0, 1.0]])?;
-/// let e = plan_move(&robot, &limits, &[post], 0.01, from, to, &opts).unwrap_err();
+/// let e = plan_move(std::slice::from_ref(&robot), &limits, &[post], 0.01, from, to, &opts).unwrap_err();
 /// assert_eq!(e, PlanError::GoalBlocked { obstacle: 0 });
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn plan_move(
-    shape: &ConvexPolygon,
+    pieces: &[ConvexPolygon],
     limits: &RobotLimits,
     obstacles: &[ConvexPolygon],
     delta: f64,
@@ -55,7 +56,7 @@ pub fn plan_move(
     to: Pose,
     opts: &PlannerOptions,
 ) -> Result<PlannedMove, PlanError> {
-    let plan = |a: Pose, b: Pose| plan_direct(shape, limits, obstacles, delta, a, b, opts);
+    let plan = |a: Pose, b: Pose| plan_direct(pieces, limits, obstacles, delta, a, b, opts);
     let error = match plan(from, to) {
         Ok(m) => return Ok(m),
         Err(e @ (PlanError::InvalidLimits { .. } | PlanError::InvalidArgument { .. })) => {
@@ -100,7 +101,7 @@ pub fn plan_move(
         });
         joined.then(|| chain(&legs))
     };
-    let radius = shape.radius();
+    let radius = radius(pieces);
     let mut points = vec![from.pos, to.pos];
     for centre in [from.pos, to.pos] {
         for ring in RINGS {

@@ -68,6 +68,29 @@ pub struct RobotView {
     pub bars: Vec<Bar>,
 }
 
+impl RobotView {
+    /// The polygons that draw the body: its parts when it was given by parts, else its one
+    /// shape (convex, or its outline).
+    ///
+    /// ```
+    /// use workcell::collision::{check, CheckOptions};
+    /// use workcell::view::Model;
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/grippers-interleave.json");
+    /// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+    /// let model = Model::of_check(path.as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+    /// // G1 is given by parts (a palm and two fingers); G2 by an outline, drawn as itself.
+    /// assert_eq!((model.robots[0].drawn().len(), model.robots[1].drawn().len()), (3, 1));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn drawn(&self) -> Vec<&[[f64; 2]]> {
+        if self.parts.is_empty() || self.outlined {
+            vec![&self.shape]
+        } else {
+            self.parts.iter().map(Vec::as_slice).collect()
+        }
+    }
+}
+
 /// One activity of a robot.
 #[derive(Clone, Debug, Serialize)]
 pub struct Bar {

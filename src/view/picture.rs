@@ -111,11 +111,10 @@ pub fn picture(m: &Model) -> String {
     cell_svg(m, false).to_string()
 }
 
-/// The robot's shape at a pose, in world coordinates.
-pub fn placed(robot: &RobotView, pose: [f64; 3]) -> impl Iterator<Item = [f64; 2]> + '_ {
+/// A polygon of the robot's frame at a pose, in world coordinates.
+pub fn placed(polygon: &[[f64; 2]], pose: [f64; 3]) -> impl Iterator<Item = [f64; 2]> + '_ {
     let (s, c) = pose[2].sin_cos();
-    robot
-        .shape
+    polygon
         .iter()
         .map(move |v| [pose[0] + c * v[0] - s * v[1], pose[1] + s * v[0] + c * v[1]])
 }
@@ -328,13 +327,15 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
             .into_iter()
             .chain(robot.order.iter().map(|&k| m.tasks[k].pose));
         for pose in poses {
-            group = group.add(
-                frame
-                    .polygon(placed(robot, pose))
-                    .set("fill", colour)
-                    .set("fill-opacity", 0.12)
-                    .set("stroke-width", 1),
-            );
+            for polygon in robot.drawn() {
+                group = group.add(
+                    frame
+                        .polygon(placed(polygon, pose))
+                        .set("fill", colour)
+                        .set("fill-opacity", 0.12)
+                        .set("stroke-width", 1),
+                );
+            }
         }
     }
     if let Some(h) = robot.home {

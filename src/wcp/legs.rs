@@ -80,7 +80,7 @@ impl Piece {
     /// use workcell::wcp::legs::{HoldReason, Piece};
     /// let limits = RobotLimits { max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 };
     /// let (a, b) = (Pose::new(0.0, 0.0, 0.0), Pose::new(4.0, 0.0, 0.0));
-    /// let m = plan_move(&ConvexPolygon::rectangle(1.0, 1.0)?, &limits, &[], 0.01, a, b, &PlannerOptions::default())?;
+    /// let m = plan_move(&[ConvexPolygon::rectangle(1.0, 1.0)?], &limits, &[], 0.01, a, b, &PlannerOptions::default())?;
     /// let d = m.duration;
     /// assert_eq!(Piece::Go { motion: Arc::new(m), scale: 2.0 }.duration(), 2.0 * d);
     /// assert_eq!(Piece::Hold { duration: 1.5, reason: HoldReason::Pause }.duration(), 1.5);

@@ -35,6 +35,7 @@ mod narrow_phase_props;
 mod oracle;
 mod parts_checker;
 mod parts_files;
+mod parts_solve;
 mod planning;
 mod sequencer;
 mod solve;

@@ -164,20 +164,48 @@ fn first_contact_names_the_parts() {
 }
 
 #[test]
-fn cells_refuse_parts_until_solve_plans_them() {
+fn cells_take_parts_and_outlines_and_keep_the_hull_as_shape() {
     let cell = |robot: Value| {
-        json!({"robots": [robot], "tasks": [{"name": "t", "at": [1, 1], "duration": 1}]})
-            .to_string()
+        json!({"delta": 0.01, "robots": [robot],
+               "obstacles": [{"name": "U", "outline": [[2, -1], [3, -1], [3, 1], [2, 1], [2, 0.8],
+                                                       [2.8, 0.8], [2.8, -0.8], [2, -0.8]]}],
+               "tasks": [{"name": "t", "at": [2.4, 0], "duration": 1}]})
+        .to_string()
     };
-    let robot = json!({"name": "R", "outline": [[0, 0], [1, 0], [1, 1], [0, 1]], "home": [0, 0],
-                       "max_speed": 1, "max_accel": 1, "max_turn_rate": 1});
-    let e = parse_cell(&cell(robot), Path::new("c.json")).unwrap_err();
+    let gripper = json!({"name": "G", "parts": [[[-0.2, -0.3], [0.0, -0.3], [0.0, 0.3], [-0.2, 0.3]],
+                                                [[0.0, 0.2], [0.3, 0.2], [0.3, 0.3], [0.0, 0.3]],
+                                                [[0.0, -0.3], [0.3, -0.3], [0.3, -0.2], [0.0, -0.2]]],
+                         "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1});
+    let loaded = parse_cell(&cell(gripper), Path::new("c.json"))
+        .unwrap()
+        .cell;
+    let (robot, bay) = (&loaded.robots[0], &loaded.obstacles[0]);
+    assert_eq!(robot.pieces().len(), 3);
+    assert_eq!(robot.parts.as_ref().unwrap().hull(), &robot.shape);
+    // The outline is cut into convex parts; the hull is the bounding square.
+    assert!(bay.pieces().len() >= 3);
+    assert_eq!(bay.shape.len(), 4);
+    // A task inside the bay's hull but outside the bay is taken; one in a wall is not.
+    let text = cell(
+        json!({"name": "R", "outline": [[0, 0], [0.2, 0], [0.2, 0.2], [0, 0.2]],
+                           "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1}),
+    )
+    .replace("[2.4,0]", "[2.9,0]");
+    let e = parse_cell(&text, Path::new("c.json")).unwrap_err();
     assert_eq!(
         (e.body.as_deref(), e.field.as_str()),
-        (Some("R"), "robots[0].outline")
+        (Some("t"), "tasks[0].at")
     );
-    assert!(
-        e.reason.contains("does not plan bodies of parts yet"),
-        "{e}"
-    );
+    assert!(e.reason.contains("inside obstacle \"U\""), "{e}");
+    // A convex outline is one convex shape: no parts kept.
+    let square = json!({"name": "R", "outline": [[0, 0], [0.2, 0], [0.2, 0.2], [0, 0.2]],
+                        "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1});
+    let loaded = parse_cell(&cell(square), Path::new("c.json")).unwrap().cell;
+    assert!(loaded.robots[0].parts.is_none());
+    // Both `shape` and `parts`: refused by name, as in scenes.
+    let both = json!({"name": "R", "shape": [[0, 0], [0.2, 0], [0.2, 0.2]],
+                      "parts": [[[0, 0], [0.2, 0], [0.2, 0.2]]],
+                      "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1});
+    let e = parse_cell(&cell(both), Path::new("c.json")).unwrap_err();
+    assert_eq!(e.field, "robots[0].parts");
 }

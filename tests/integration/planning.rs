@@ -34,7 +34,7 @@ fn pose(x: f64, y: f64, theta: f64) -> Pose {
 
 fn plan(robot: &ConvexPolygon, obstacles: &[ConvexPolygon], from: Pose, to: Pose) -> PlannedMove {
     plan_move(
-        robot,
+        std::slice::from_ref(robot),
         &LIMITS,
         obstacles,
         DELTA,
@@ -237,7 +237,17 @@ fn blocked_start_and_goal_name_the_obstacle() {
         rect(4.0, -1.0, 4.495, 1.0),
     ];
     let opts = PlannerOptions::default();
-    let go = |from, to| plan_move(&robot, &LIMITS, &obstacles, DELTA, from, to, &opts);
+    let go = |from, to| {
+        plan_move(
+            std::slice::from_ref(&robot),
+            &LIMITS,
+            &obstacles,
+            DELTA,
+            from,
+            to,
+            &opts,
+        )
+    };
     // 0.02 from obstacle 1 is clear (the planning clearance is δ·1.02 = 0.0102), 0.005
     // is not.
     assert!(go(pose(0.0, 0.0, 0.0), pose(0.0, -3.0, 0.0)).is_ok());
@@ -259,7 +269,7 @@ fn enclosed_goal_has_no_path() {
         rect(2.0, -2.0, 3.0, 1.5),
     ];
     let e = plan_move(
-        &robot,
+        std::slice::from_ref(&robot),
         &LIMITS,
         &ring,
         DELTA,
@@ -273,6 +283,37 @@ fn enclosed_goal_has_no_path() {
         e.to_string(),
         "no collision-free path from the start to the goal"
     );
+}
+
+/// A gripper reaches round a post, which ends between its fingers: its parts are grown one by
+/// one, so the gap between them stays open; its hull is stopped at the post. Turning on the
+/// way in, it sweeps each part, and the checker, given the parts, certifies the move.
+#[test]
+fn a_robot_of_parts_reaches_round_a_post_its_hull_could_not() {
+    let palm = rect(-0.4, -0.5, 0.0, 0.5);
+    let fingers = [rect(0.0, 0.3, 0.8, 0.5), rect(0.0, -0.5, 0.8, -0.3)];
+    let gripper = [palm, fingers[0].clone(), fingers[1].clone()];
+    let post = rect(2.5, -0.15, 2.8, 0.15);
+    let opts = PlannerOptions::default();
+    let obstacles = std::slice::from_ref(&post);
+    for from in [pose(-3.0, 0.0, 0.0), pose(-3.0, 2.0, 0.4)] {
+        let to = pose(2.1, 0.0, 0.0);
+        let planned = plan_move(&gripper, &LIMITS, obstacles, DELTA, from, to, &opts).unwrap();
+        let parts = workcell::geometry::Parts::new(gripper.to_vec()).unwrap();
+        let trajectory = Trajectory::new(planned.samples.clone()).unwrap();
+        let scene = Scene {
+            delta: DELTA,
+            bodies: vec![
+                Body::robot_of_parts("gripper", parts.clone(), trajectory),
+                Body::obstacle("post", &post),
+            ],
+        };
+        let report = check(&scene, &CheckOptions::default());
+        assert!(!report.collision && report.certified, "{report:?}");
+        let hull = parts.hull().clone();
+        let e = plan_move(&[hull], &LIMITS, obstacles, DELTA, from, to, &opts).unwrap_err();
+        assert_eq!(e, PlanError::GoalBlocked { obstacle: 0 });
+    }
 }
 
 #[test]
@@ -330,7 +371,7 @@ proptest! {
         let obstacles: Vec<ConvexPolygon> = obstacles.iter().map(|o| polygon(o)).collect();
         let from = pose(ends[0], ends[1], ends[2]);
         let to = pose(ends[3], ends[4], ends[5]);
-        match plan_move(&robot, &LIMITS, &obstacles, DELTA, from, to, &PlannerOptions::default()) {
+        match plan_move(std::slice::from_ref(&robot), &LIMITS, &obstacles, DELTA, from, to, &PlannerOptions::default()) {
             Ok(planned) => {
                 check_model(&robot, from, to, &planned);
                 certify(&robot, &obstacles, &planned);

@@ -30,11 +30,7 @@ pub(super) fn clears(
     opts: &CheckOptions,
 ) -> bool {
     let body = |r: usize, s: &RobotSchedule| -> Option<Body> {
-        Some(Body::robot(
-            cell.robots[r].name.clone(),
-            cell.robots[r].shape.clone(),
-            Trajectory::new(window(&s.samples, t0, t1)).ok()?,
-        ))
+        Some(cell.robots[r].body(Trajectory::new(window(&s.samples, t0, t1)).ok()?))
     };
     let (Some(a), Some(b)) = (body(x, sx), body(y, sy)) else {
         return false;

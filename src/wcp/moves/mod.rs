@@ -158,27 +158,46 @@ pub fn certified_move(
     planner: &PlannerOptions,
     obstacles: &[Body],
 ) -> Result<PlannedMove, MoveFailure> {
-    let shapes: Vec<_> = cell.obstacles.iter().map(|o| o.shape.clone()).collect();
-    let planned = plan_only(cell, r, from, to, planner, &shapes)?;
+    let fixtures = Fixtures::of(cell);
+    let planned = plan_only(cell, r, from, to, planner, &fixtures)?;
     certify(cell, r, &planned.samples, obstacles)?;
     Ok(planned)
 }
 
-/// The planner's move among `shapes` (every obstacle of the cell, in order), not certified.
+/// The cell's obstacles as the planner takes them: every convex piece (an obstacle of parts
+/// gives each part), with the obstacle each belongs to.
+pub(crate) struct Fixtures {
+    pub pieces: Vec<ConvexPolygon>,
+    pub owner: Vec<usize>,
+}
+
+impl Fixtures {
+    pub fn of(cell: &Cell) -> Fixtures {
+        let (mut pieces, mut owner) = (Vec::new(), Vec::new());
+        for (k, o) in cell.obstacles.iter().enumerate() {
+            pieces.extend_from_slice(o.pieces());
+            owner.extend(std::iter::repeat_n(k, o.pieces().len()));
+        }
+        Fixtures { pieces, owner }
+    }
+}
+
+/// The planner's move among every piece of every obstacle of the cell, not certified.
 fn plan_only(
     cell: &Cell,
     r: usize,
     from: usize,
     to: usize,
     planner: &PlannerOptions,
-    shapes: &[ConvexPolygon],
+    fixtures: &Fixtures,
 ) -> Result<PlannedMove, MoveFailure> {
     let robot = &cell.robots[r];
     let (a, b) = (node_pose(cell, r, from), node_pose(cell, r, to));
+    let name = |piece: usize| cell.obstacles[fixtures.owner[piece]].name.clone();
     plan_move(
-        &robot.shape,
+        robot.pieces(),
         &limits(robot),
-        shapes,
+        &fixtures.pieces,
         cell.delta,
         a,
         b,
@@ -187,11 +206,11 @@ fn plan_only(
     .map_err(|e| match e {
         PlanError::StartBlocked { obstacle } => MoveFailure::Blocked {
             end: "start",
-            obstacle: cell.obstacles[obstacle].name.clone(),
+            obstacle: name(obstacle),
         },
         PlanError::GoalBlocked { obstacle } => MoveFailure::Blocked {
             end: "goal",
-            obstacle: cell.obstacles[obstacle].name.clone(),
+            obstacle: name(obstacle),
         },
         other => MoveFailure::Plan(other),
     })
@@ -230,11 +249,7 @@ pub(crate) fn certify(
     let trajectory = Trajectory::new(samples.to_vec())
         .expect("the planner emits finite samples at increasing times");
     let mut bodies = Vec::with_capacity(obstacles.len() + 1);
-    bodies.push(Body::robot(
-        robot.name.clone(),
-        robot.shape.clone(),
-        trajectory,
-    ));
+    bodies.push(robot.body(trajectory));
     bodies.extend_from_slice(obstacles);
     let report = check(
         &Scene {

@@ -2,7 +2,8 @@
 //! the motions the feedback loop's remedies ask for between any two poses, planned once too.
 
 use super::{
-    bounding_box, boxes_within, certify, limits, node_pose, plan_only, MoveFailure, NEAR_SLACK,
+    bounding_box, boxes_within, certify, limits, node_pose, plan_only, Fixtures, MoveFailure,
+    NEAR_SLACK,
 };
 use crate::cell::Cell;
 use crate::collision::Body;
@@ -35,7 +36,10 @@ type Shard = HashMap<(usize, usize, usize), Arc<Slot>>;
 pub struct MoveStore {
     cell: Cell,
     planner: PlannerOptions,
-    shapes: Vec<ConvexPolygon>,
+    /// Every convex piece of the obstacles, as the planner takes them.
+    fixtures: Fixtures,
+    /// Each piece's bounding box.
+    piece_boxes: Vec<(Vec2, Vec2)>,
     obstacles: Vec<Body>,
     /// Each obstacle's bounding box.
     boxes: Vec<(Vec2, Vec2)>,
@@ -69,10 +73,17 @@ impl MoveStore {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn new(cell: &Cell, planner: &PlannerOptions) -> Self {
+        let fixtures = Fixtures::of(cell);
+        let piece_boxes = fixtures
+            .pieces
+            .iter()
+            .map(|p| bounding_box(p.vertices()))
+            .collect();
         MoveStore {
             cell: cell.clone(),
             planner: *planner,
-            shapes: cell.obstacles.iter().map(|o| o.shape.clone()).collect(),
+            fixtures,
+            piece_boxes,
             obstacles: cell.obstacle_bodies(),
             boxes: cell
                 .obstacles
@@ -147,13 +158,15 @@ impl MoveStore {
             * NEAR_SLACK
             + cell.delta;
         let segment = bounding_box(&[pa, pb]);
-        let near: Vec<usize> = (0..self.boxes.len())
-            .filter(|&k| boxes_within(&self.boxes[k], &segment, reach))
+        let boxes = &self.piece_boxes;
+        let near: Vec<usize> = (0..boxes.len())
+            .filter(|&k| boxes_within(&boxes[k], &segment, reach))
             .collect();
-        let planned = if near.len() < self.boxes.len() {
-            let shapes: Vec<ConvexPolygon> = near.iter().map(|&k| self.shapes[k].clone()).collect();
+        let planned = if near.len() < boxes.len() {
+            let pieces = &self.fixtures.pieces;
+            let shapes: Vec<ConvexPolygon> = near.iter().map(|&k| pieces[k].clone()).collect();
             let straight = plan_move(
-                &robot.shape,
+                robot.pieces(),
                 &limits(robot),
                 &shapes,
                 cell.delta,
@@ -165,10 +178,10 @@ impl MoveStore {
             .filter(|m| m.path.len() == 2 && m.path[0] == pa && m.path[1] == pb);
             match straight {
                 Some(m) => m,
-                None => plan_only(cell, r, a, b, &self.planner, &self.shapes)?,
+                None => plan_only(cell, r, a, b, &self.planner, &self.fixtures)?,
             }
         } else {
-            plan_only(cell, r, a, b, &self.planner, &self.shapes)?
+            plan_only(cell, r, a, b, &self.planner, &self.fixtures)?
         };
         let seen = bounding_box(&planned.samples.iter().map(|s| s.pos).collect::<Vec<_>>());
         let reach = robot.shape.radius() * NEAR_SLACK + 2.0 * cell.delta;
@@ -277,10 +290,10 @@ impl MoveStore {
             return known.clone();
         }
         let robot = &self.cell.robots[r];
-        let mut obstacles = self.shapes.clone();
+        let mut obstacles = self.fixtures.pieces.clone();
         obstacles.extend_from_slice(extra);
         let planned = plan_move(
-            &robot.shape,
+            robot.pieces(),
             &limits(robot),
             &obstacles,
             self.cell.delta,

@@ -117,9 +117,7 @@ impl Schedule {
     }
 
     fn body(&self, cell: &Cell, r: usize) -> Body {
-        Body::robot(
-            cell.robots[r].name.clone(),
-            cell.robots[r].shape.clone(),
+        cell.robots[r].body(
             Trajectory::new(self.robots[r].samples.clone())
                 .expect("schedules sample increasing times"),
         )
@@ -147,17 +145,20 @@ impl Schedule {
         let robot = |name: &str| cell.robots.iter().position(|r| r.name == name);
         let a = robot(&contact.bodies[0]).expect("the checker names a robot first");
         let b = robot(&contact.bodies[1]);
-        let shape_a = &cell.robots[a].shape;
+        let pieces_a = cell.robots[a].pieces();
         let pose_a = self.robots[a].pose_at(contact.time);
-        let (shape_b, pose_b) = match b {
-            Some(b) => (&cell.robots[b].shape, self.robots[b].pose_at(contact.time)),
+        let (pieces_b, pose_b) = match b {
+            Some(b) => (
+                cell.robots[b].pieces(),
+                self.robots[b].pose_at(contact.time),
+            ),
             None => {
                 let o = cell
                     .obstacles
                     .iter()
                     .find(|o| o.name == contact.bodies[1])?;
                 (
-                    &o.shape,
+                    o.pieces(),
                     Pose {
                         pos: Vec2::zeros(),
                         theta: 0.0,
@@ -165,13 +166,17 @@ impl Schedule {
                 )
             }
         };
+        // The nearest pair of pieces (the one pair of a convex robot and obstacle).
         let posed = |s, p: Pose| Posed::new(s, p.pos.x, p.pos.y, p.theta);
-        let d = closest_features(
-            &posed(shape_a, pose_a),
-            &posed(shape_b, pose_b),
-            None,
-            &WalkTolerances::default(),
-        );
+        let d = pieces_a
+            .iter()
+            .flat_map(|x| pieces_b.iter().map(move |y| (x, y)))
+            .map(|(x, y)| {
+                let tol = WalkTolerances::default();
+                closest_features(&posed(x, pose_a), &posed(y, pose_b), None, &tol)
+            })
+            .min_by(|p, q| p.distance.total_cmp(&q.distance))
+            .expect("a body has at least one piece");
         Some(Collision {
             time: contact.time,
             bodies: contact.bodies.clone(),

@@ -21,11 +21,6 @@ const SWEEP_CHUNK: usize = 8;
 /// runs of its samples while it moves.
 fn occupancy(ctx: &Ctx, view: &View, y: usize, t0: f64, t1: f64) -> Vec<ConvexPolygon> {
     let ys = &view.robots[y];
-    let shape = &ctx.cell.robots[y].shape;
-    let placed = |p: Pose| -> Vec<Vec2> {
-        let posed = Posed::new(shape, p.pos.x, p.pos.y, p.theta);
-        (0..posed.len()).map(|i| posed.vertex(i)).collect()
-    };
     let mut poses = vec![ys.pose_at(t0)];
     poses.extend(
         ys.samples
@@ -38,21 +33,30 @@ fn occupancy(ctx: &Ctx, view: &View, y: usize, t0: f64, t1: f64) -> Vec<ConvexPo
     );
     poses.push(ys.pose_at(t1));
     poses.dedup();
+    // Piece by piece: a robot of parts leaves free what lies between its parts (a gripper's
+    // opening), which the hull of the whole robot would close.
     let mut out = Vec::new();
-    let mut start = 0;
-    loop {
-        let end = (start + SWEEP_CHUNK).min(poses.len() - 1);
-        let points: Vec<Vec2> = poses[start..=end].iter().flat_map(|&p| placed(p)).collect();
-        let hull = convex_hull(points);
-        let pts: Vec<[f64; 2]> = hull.iter().map(|v| [v.x, v.y]).collect();
-        if let Ok((polygon, _)) = ConvexPolygon::new(&pts) {
-            out.push(polygon);
+    for piece in ctx.cell.robots[y].pieces() {
+        let placed = |p: Pose| -> Vec<Vec2> {
+            let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
+            (0..posed.len()).map(|i| posed.vertex(i)).collect()
+        };
+        let mut start = 0;
+        loop {
+            let end = (start + SWEEP_CHUNK).min(poses.len() - 1);
+            let points: Vec<Vec2> = poses[start..=end].iter().flat_map(|&p| placed(p)).collect();
+            let hull = convex_hull(points);
+            let pts: Vec<[f64; 2]> = hull.iter().map(|v| [v.x, v.y]).collect();
+            if let Ok((polygon, _)) = ConvexPolygon::new(&pts) {
+                out.push(polygon);
+            }
+            if end == poses.len() - 1 {
+                break;
+            }
+            start = end;
         }
-        if end == poses.len() - 1 {
-            return out;
-        }
-        start = end;
     }
+    out
 }
 
 /// Re-plan the leg around the other robot.
@@ -124,4 +128,50 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     };
     let remedy = Remedy::on(side.x, m, (from, to), kind);
     Some(child(view, side.x, m, new, s, remedy))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cell::parse_cell;
+    use crate::planning::PlannerOptions;
+    use crate::wcp::legs::default_legs;
+    use crate::wcp::moves::MoveStore;
+    use crate::wcp::options::SolveOptions;
+    use crate::wcp::schedule::Schedule;
+
+    /// The region a robot of parts occupies is its parts', not its hull's: between the two
+    /// feet of a gantry another robot may pass.
+    #[test]
+    fn a_robot_of_parts_occupies_its_parts_not_its_hull() {
+        let text = r#"{"delta": 0.01, "robots": [
+            {"name": "X", "shape": [[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]],
+             "home": [0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1},
+            {"name": "gantry", "parts": [[[-0.2, 0.6], [0.2, 0.6], [0.2, 1.0], [-0.2, 1.0]],
+                                         [[-0.2, -1.0], [0.2, -1.0], [0.2, -0.6], [-0.2, -0.6]]],
+             "home": [3, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}],
+            "tasks": [{"name": "t", "at": [6, 0], "duration": 1, "robots": ["X"]}]}"#;
+        let cell = parse_cell(text, "gantry.json".as_ref()).unwrap().cell;
+        let opts = SolveOptions::default();
+        let moves = MoveStore::new(&cell, &PlannerOptions::default());
+        let (routes, legs) = (vec![vec![0], vec![]], default_legs(2));
+        let schedule = Schedule::build(&cell, &routes, &legs, &moves).unwrap();
+        let ctx = Ctx::new(&cell, &moves, &opts);
+        let view = View {
+            routes: &routes,
+            legs: &legs,
+            robots: &schedule.robots,
+        };
+        let region = occupancy(&ctx, &view, 1, 0.0, 1.0);
+        assert_eq!(region.len(), 2);
+        let between = Vec2::new(3.0, 0.0);
+        let inside = |p: &ConvexPolygon| {
+            (0..p.len()).all(|i| p.normals()[i].dot(&(between - p.vertices()[i])) < 0.0)
+        };
+        assert!(!region.iter().any(inside));
+        // Through the gantry's feet, the detour is the straight move.
+        let (a, b) = (node_pose(&cell, 0, 0), node_pose(&cell, 0, 1));
+        let motion = moves.between(0, a, b, &region).expect("a way through");
+        assert_eq!(motion.path, [a.pos, b.pos]);
+    }
 }

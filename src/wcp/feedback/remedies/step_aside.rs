@@ -28,8 +28,7 @@ fn parking_poses(
     (t0, t1): (f64, f64),
 ) -> Vec<Pose> {
     let cell = ctx.cell;
-    let shape = &cell.robots[x].shape;
-    let (rx, ry) = (shape.radius(), cell.robots[y].shape.radius());
+    let (rx, ry) = (cell.robots[x].shape.radius(), cell.robots[y].shape.radius());
     let ys = &view.robots[y];
     let passes: Vec<Vec2> = ys
         .samples
@@ -40,14 +39,23 @@ fn parking_poses(
         .collect();
     let obstacles: Vec<Body> = ctx.moves.obstacles().to_vec();
     let tol = WalkTolerances::default();
+    // Part by part: a robot of parts may park inside a bay its hull would not fit.
     let clear_of_fixtures = |p: Pose| {
-        let posed = Posed::new(shape, p.pos.x, p.pos.y, p.theta);
-        obstacles.iter().all(|o| {
-            let Motion::Fixed(at) = &o.motion else {
-                return true;
-            };
-            let other = Posed::new(&o.shape, at.pos.x, at.pos.y, at.theta);
-            closest_features(&posed, &other, None, &tol).distance > 2.0 * cell.delta
+        cell.robots[x].pieces().iter().all(|piece| {
+            let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
+            obstacles.iter().all(|o| {
+                let Motion::Fixed(at) = &o.motion else {
+                    return true;
+                };
+                let pieces = o
+                    .parts
+                    .as_ref()
+                    .map_or(std::slice::from_ref(&o.shape), |p| p.parts());
+                pieces.iter().all(|q| {
+                    let other = Posed::new(q, at.pos.x, at.pos.y, at.theta);
+                    closest_features(&posed, &other, None, &tol).distance > 2.0 * cell.delta
+                })
+            })
         })
     };
     let mut out = Vec::new();
@@ -143,4 +151,59 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         RemedyKind::StepAside { park, duration: d },
     );
     Some(child(view, x, m, new, s, remedy))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cell::parse_cell;
+    use crate::planning::PlannerOptions;
+    use crate::wcp::legs::default_legs;
+    use crate::wcp::moves::MoveStore;
+    use crate::wcp::options::SolveOptions;
+    use crate::wcp::schedule::Schedule;
+
+    /// A gripper may park with a post between its fingers, where its hull would not fit.
+    #[test]
+    fn a_robot_of_parts_parks_where_its_parts_fit() {
+        let gripper = r#"[[[-0.4, -0.5], [0.0, -0.5], [0.0, 0.5], [-0.4, 0.5]],
+                          [[0.0, 0.3], [0.8, 0.3], [0.8, 0.5], [0.0, 0.5]],
+                          [[0.0, -0.5], [0.8, -0.5], [0.8, -0.3], [0.0, -0.3]]]"#;
+        let radius = (0.8f64).hypot(0.5);
+        // On the first ring, due east: the post between the fingers there.
+        let x = 2.0 * radius + 0.55;
+        let text = format!(
+            r#"{{"delta": 0.01, "robots": [
+            {{"name": "G", "parts": {gripper}, "home": [0, 0], "max_speed": 1, "max_accel": 2,
+              "max_turn_rate": 1}},
+            {{"name": "Y", "shape": [[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]],
+              "home": [0, 9], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}}],
+            "obstacles": [{{"name": "post", "shape": [[{a}, -0.15], [{b}, -0.15], [{b}, 0.15], [{a}, 0.15]]}}],
+            "tasks": [{{"name": "t", "at": [-3, 0], "duration": 1}}]}}"#,
+            a = x - 0.15,
+            b = x + 0.15,
+        );
+        let cell = parse_cell(&text, "park.json".as_ref()).unwrap().cell;
+        let opts = SolveOptions::default();
+        let moves = MoveStore::new(&cell, &PlannerOptions::default());
+        let (routes, legs) = (vec![vec![], vec![]], default_legs(2));
+        let schedule = Schedule::build(&cell, &routes, &legs, &moves).unwrap();
+        let ctx = Ctx::new(&cell, &moves, &opts);
+        let view = View {
+            routes: &routes,
+            legs: &legs,
+            robots: &schedule.robots,
+        };
+        let home = cell.robots[0].home;
+        let poses = parking_poses(&ctx, &view, 0, 1, home, (0.0, 1.0));
+        let east = poses
+            .iter()
+            .find(|p| (p.pos - Vec2::new(2.0 * radius, 0.0)).norm() < 1e-9)
+            .expect("the pose with the post between the fingers");
+        // Its hull there would overlap the post.
+        let hull = Posed::new(&cell.robots[0].shape, east.pos.x, east.pos.y, east.theta);
+        let post = Posed::new(&cell.obstacles[0].shape, 0.0, 0.0, 0.0);
+        let d = closest_features(&hull, &post, None, &WalkTolerances::default()).distance;
+        assert_eq!(d, 0.0);
+    }
 }
