@@ -6,7 +6,7 @@ use super::reading::{delta, document, read_file, Point};
 use super::InputError;
 use crate::collision::{Body, Scene};
 use crate::geometry::Vec2;
-use crate::motion::{Sample, Trajectory, TrajectoryError};
+use crate::motion::{ArmError, ArmMotion, JointSample, Pose, Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -31,15 +31,36 @@ struct RawRobot {
     parts: Option<Vec<Vec<Point>>>,
     #[serde(default)]
     outline: Option<Vec<Point>>,
+    /// An arm's base pose (contract section 6).
+    #[serde(default)]
+    base: Option<Vec<f64>>,
+    /// An arm's links.
+    #[serde(default)]
+    links: Option<Vec<RawLink>>,
     trajectory: Samples,
+}
+
+/// A link of an arm as written: its length and body in its own frame.
+#[derive(Deserialize)]
+#[serde(remote = "Self")]
+struct RawLink {
+    length: f64,
+    #[serde(default)]
+    shape: Option<Vec<Point>>,
+    #[serde(default)]
+    parts: Option<Vec<Vec<Point>>>,
+    #[serde(default)]
+    outline: Option<Vec<Point>>,
 }
 
 #[derive(Deserialize)]
 #[serde(remote = "Self")]
 struct RawSample {
     t: f64,
-    x: f64,
-    y: f64,
+    #[serde(default)]
+    x: Option<f64>,
+    #[serde(default)]
+    y: Option<f64>,
     #[serde(default)]
     vx: Option<f64>,
     #[serde(default)]
@@ -48,15 +69,21 @@ struct RawSample {
     theta: Option<f64>,
     #[serde(default)]
     omega: Option<f64>,
+    /// An arm's joint angles (contract section 6).
+    #[serde(default)]
+    q: Option<Vec<f64>>,
+    /// An arm's joint velocities.
+    #[serde(default)]
+    qd: Option<Vec<f64>>,
 }
 
 impl RawSample {
-    /// The sample as [`Samples`] holds it.
-    fn sample(&self) -> Sample {
+    /// A rigid robot's sample as [`Samples`] holds it (`x` and `y` checked given).
+    fn sample(&self, x: f64, y: f64) -> Sample {
         let missing = f64::NAN;
         Sample {
             t: self.t,
-            pos: Vec2::new(self.x, self.y),
+            pos: Vec2::new(x, y),
             theta: self.theta.unwrap_or(0.0),
             vel: Vec2::new(self.vx.unwrap_or(missing), self.vy.unwrap_or(missing)),
             omega: self.omega.unwrap_or(missing),
@@ -64,15 +91,81 @@ impl RawSample {
     }
 }
 
-/// A robot's samples as written, in the trajectory's own form and vector: θ 0 where the
-/// file gives none, velocities NaN where it gives none (JSON cannot hold NaN), for
-/// [`Trajectory::with_missing_velocities`] to derive.
-struct Samples(Vec<Sample>);
+/// A robot's samples as written. A rigid robot's in the trajectory's own form and vector: θ
+/// 0 where the file gives none, velocities NaN where it gives none (JSON cannot hold NaN), for
+/// [`Trajectory::with_missing_velocities`] to derive; an arm's with its joint angles (`qd`
+/// empty where the file gives none).
+enum Samples {
+    Rigid(Vec<Sample>),
+    Joints(Vec<JointSample>),
+}
+
+/// One sample, of either kind: decided by its keys, refused by name when they are mixed.
+enum AnySample {
+    Rigid(Sample),
+    Joints(JointSample),
+}
+
+impl<'de> Deserialize<'de> for AnySample {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        // The trait's, which refuses a record written as an array (`object_only!`).
+        let raw = <RawSample as Deserialize>::deserialize(d)?;
+        let Some(q) = raw.q.clone() else {
+            if raw.qd.is_some() {
+                return Err(D::Error::custom("`qd` is given without `q`"));
+            }
+            let x = raw.x.ok_or_else(|| D::Error::missing_field("x"))?;
+            let y = raw.y.ok_or_else(|| D::Error::missing_field("y"))?;
+            return Ok(AnySample::Rigid(raw.sample(x, y)));
+        };
+        let rigid = [
+            ("x", raw.x.is_some()),
+            ("y", raw.y.is_some()),
+            ("theta", raw.theta.is_some()),
+            ("vx", raw.vx.is_some()),
+            ("vy", raw.vy.is_some()),
+            ("omega", raw.omega.is_some()),
+        ];
+        if let Some((key, _)) = rigid.iter().find(|(_, given)| *given) {
+            let reason = format!(
+                "a sample gives joint angles `q` or a pose (`x`, `y`, ...), not both: `{key}` \
+                 beside `q`"
+            );
+            return Err(D::Error::custom(reason));
+        }
+        Ok(AnySample::Joints(JointSample {
+            t: raw.t,
+            q,
+            qd: raw.qd.unwrap_or_default(),
+        }))
+    }
+}
 
 impl<'de> Deserialize<'de> for Samples {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let raw = Vec::<RawSample>::deserialize(d)?;
-        Ok(Samples(raw.iter().map(RawSample::sample).collect()))
+        use serde::de::Error;
+        let raw = Vec::<AnySample>::deserialize(d)?;
+        let joints = matches!(raw.first(), Some(AnySample::Joints(_)));
+        let mut rigid = Vec::new();
+        let mut arm = Vec::new();
+        for (k, sample) in raw.into_iter().enumerate() {
+            match (sample, joints) {
+                (AnySample::Rigid(s), false) => rigid.push(s),
+                (AnySample::Joints(s), true) => arm.push(s),
+                _ => {
+                    return Err(D::Error::custom(format!(
+                        "sample {k} is not of the first sample's kind: a trajectory gives \
+                         joint angles `q` in every sample (an arm) or poses in every sample"
+                    )))
+                }
+            }
+        }
+        Ok(if joints {
+            Samples::Joints(arm)
+        } else {
+            Samples::Rigid(rigid)
+        })
     }
 }
 
@@ -95,6 +188,10 @@ object_only!(
 object_only!(
     RawRobot,
     "a robot: an object with `name`, `trajectory` and one of `shape`, `parts`, `outline`"
+);
+object_only!(
+    RawLink,
+    "a link: an object with `length` and one of `shape`, `parts`, `outline`"
 );
 object_only!(
     RawSample,
@@ -160,13 +257,22 @@ fn build(raw: RawScene, file: &Path) -> Result<LoadedScene, InputError> {
     for (k, r) in raw.robots.into_iter().enumerate() {
         let at = format!("robots[{k}]");
         check_name(file, &r.name, &at, &mut names)?;
+        if r.links.is_some() || r.base.is_some() {
+            bodies.extend(arm(file, &at, r, &mut warnings)?);
+            continue;
+        }
         let shape = BodyShape {
             shape: r.shape.as_deref(),
             parts: r.parts.as_deref(),
             outline: r.outline.as_deref(),
         };
         let parts = shape.parts(file, &r.name, &at, &mut warnings)?;
-        let trajectory = Trajectory::with_missing_velocities(r.trajectory.0).map_err(|e| {
+        let Samples::Rigid(samples) = r.trajectory else {
+            let reason = "joint angles `q` belong to an arm: give `base` and `links`";
+            let field = format!("{at}.trajectory[0].q");
+            return Err(InputError::new(file, Some(&r.name), field, reason));
+        };
+        let trajectory = Trajectory::with_missing_velocities(samples).map_err(|e| {
             let field = match &e {
                 TrajectoryError::Empty => format!("{at}.trajectory"),
                 TrajectoryError::NotFinite { sample, field } => {
@@ -237,6 +343,80 @@ fn check_name(
     Ok(())
 }
 
+/// An arm's links as checker bodies (contract section 6), every fault named by its field.
+fn arm(
+    file: &Path,
+    at: &str,
+    r: RawRobot,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Body>, InputError> {
+    let name = r.name.as_str();
+    let err = |field: String, reason: String| InputError::new(file, Some(name), field, reason);
+    for (key, given) in [
+        ("shape", r.shape.is_some()),
+        ("parts", r.parts.is_some()),
+        ("outline", r.outline.is_some()),
+    ] {
+        if given {
+            let reason = format!(
+                "an arm takes `base` and `links` (each link with its own body), not `{key}`"
+            );
+            return Err(err(format!("{at}.{key}"), reason));
+        }
+    }
+    let Some(raw_links) = r.links else {
+        return Err(err(
+            format!("{at}.links"),
+            "an arm needs `links` beside `base`".into(),
+        ));
+    };
+    let base = match r.base.as_deref() {
+        Some(&[x, y, theta]) => Pose::new(x, y, theta),
+        Some(_) => {
+            let reason = "expected the base pose [x, y, theta]".to_owned();
+            return Err(err(format!("{at}.base"), reason));
+        }
+        None => return Err(err(format!("{at}.base"), "an arm needs `base`".into())),
+    };
+    if raw_links.is_empty() {
+        return Err(err(
+            format!("{at}.links"),
+            "an arm needs at least one link".into(),
+        ));
+    }
+    let mut lengths = Vec::with_capacity(raw_links.len());
+    let mut bodies = Vec::with_capacity(raw_links.len());
+    for (k, link) in raw_links.iter().enumerate() {
+        let at = format!("{at}.links[{k}]");
+        let shape = BodyShape {
+            shape: link.shape.as_deref(),
+            parts: link.parts.as_deref(),
+            outline: link.outline.as_deref(),
+        };
+        bodies.push(shape.parts(file, name, &at, warnings)?);
+        lengths.push(link.length);
+    }
+    let Samples::Joints(samples) = r.trajectory else {
+        let reason = "an arm's samples give its joint angles `q` (and optional `qd`), not a pose";
+        return Err(err(format!("{at}.trajectory[0]"), reason.into()));
+    };
+    let reach = bodies.iter().map(|p| p.hull().radius()).collect();
+    let motion = ArmMotion::new(base, lengths, reach, samples).map_err(|e| {
+        let field = match &e {
+            ArmError::Empty => format!("{at}.trajectory"),
+            ArmError::NoLinks => format!("{at}.links"),
+            ArmError::Length { link, .. } => format!("{at}.links[{link}].length"),
+            ArmError::Base => format!("{at}.base"),
+            ArmError::Joints { sample, field, .. } | ArmError::NotFinite { sample, field } => {
+                format!("{at}.trajectory[{sample}].{field}")
+            }
+            ArmError::NotIncreasing { sample } => format!("{at}.trajectory[{sample}].t"),
+        };
+        err(field, e.to_string())
+    })?;
+    Ok(Body::arm(r.name, motion, bodies))
+}
+
 /// The scene document read in one pass by [`Cursor`], into the records serde would make of
 /// it: unknown keys skipped, a key given twice or anything the cursor leaves to serde
 /// (`None`) read again by serde.
@@ -282,7 +462,9 @@ mod fast {
             "shape" => once(&mut shape, list(c, vertex)),
             "parts" => once(&mut parts, list(c, polygon)),
             "outline" => once(&mut outline, list(c, vertex)),
-            "trajectory" => once(&mut trajectory, list(c, sample).map(Samples)),
+            "trajectory" => once(&mut trajectory, list(c, sample).map(Samples::Rigid)),
+            // Arms are read by serde.
+            "base" | "links" => None,
             _ => c.skip(),
         })?;
         Some(RawRobot {
@@ -290,6 +472,8 @@ mod fast {
             shape,
             parts,
             outline,
+            base: None,
+            links: None,
             trajectory: trajectory?,
         })
     }
@@ -336,20 +520,24 @@ mod fast {
                 "vy" => &mut vy,
                 "theta" => &mut theta,
                 "omega" => &mut omega,
+                // An arm's sample: read by serde.
+                "q" | "qd" => return None,
                 _ => return c.skip(),
             };
             once(slot, c.number())
         })?;
         let raw = RawSample {
             t: t?,
-            x: x?,
-            y: y?,
+            x,
+            y,
             vx,
             vy,
             theta,
             omega,
+            q: None,
+            qd: None,
         };
-        Some(raw.sample())
+        Some(raw.sample(x?, y?))
     }
 }
 

@@ -21,8 +21,33 @@ use serde_json::{json, Value};
 pub fn scene_document(scene: &Scene) -> Value {
     let mut robots = Vec::new();
     let mut obstacles = Vec::new();
-    for body in &scene.bodies {
+    for (k, body) in scene.bodies.iter().enumerate() {
         match &body.motion {
+            // The first link of an arm writes the whole arm (contract section 6).
+            Motion::Link(l) => {
+                if k > 0 && scene.bodies[k - 1].same_arm(body) {
+                    continue;
+                }
+                let arm = &l.arm;
+                let links: Vec<Value> = scene.bodies[k..k + arm.links()]
+                    .iter()
+                    .zip(arm.lengths())
+                    .map(|(link, length)| {
+                        let (key, value) = geometry(link, |v| v);
+                        json!({"length": length, key: value})
+                    })
+                    .collect();
+                let samples: Vec<Value> = arm
+                    .samples()
+                    .iter()
+                    .map(|s| json!({"t": s.t, "q": s.q, "qd": s.qd}))
+                    .collect();
+                let b = arm.base();
+                robots.push(
+                    json!({"name": body.name, "base": [b.pos.x, b.pos.y, b.theta],
+                                   "links": links, "trajectory": samples}),
+                );
+            }
             Motion::Sampled(trajectory) => {
                 let samples: Vec<Value> = trajectory
                     .samples()

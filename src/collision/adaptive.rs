@@ -121,17 +121,18 @@ fn search_with(
         } else {
             // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)
             // ≥ (η(l) + η(r) − λ) / 2, so λ1 + λ2 < η(l) + η(r) − 2δ keeps the pair δ apart.
-            let lam = eta.lambda(bound, &l, &r);
+            let lam = eta.lambda(bound, span, &l, &r);
             let first_order = (l.eta + r.eta - lam) / 2.0;
             if first_order >= s.delta {
                 continue;
             }
             // The paper's method has only the first-order certificate.
+            // It needs rigid motion (a link's pose is not linear in time).
             let low = match bound {
-                BoundKind::Rigorous => {
+                BoundKind::Rigorous if !span.has_links() => {
                     first_order.max(convexity_bound(&l, &r, radii, s.walk.feature_tol))
                 }
-                BoundKind::Paper => first_order,
+                _ => first_order,
             };
             if low >= s.delta {
                 stats.convexity_certificates += 1;

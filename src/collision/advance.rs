@@ -21,7 +21,7 @@ pub(super) fn search(
     s: &PairSettings,
     stats: &mut Stats,
 ) -> Result<(), Stop> {
-    let closing = eta.lambda(BoundKind::Rigorous, &left, &right);
+    let closing = eta.lambda(BoundKind::Rigorous, span, &left, &right);
     let min_step = s.time_tol / (span.t1 - span.t0);
     let mut stack = Vec::new();
     let mut at = left;

@@ -120,10 +120,18 @@ fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> 
     }
     let half = delta.max(0.0) / 2.0;
     let bodies = &scene.bodies;
-    let (mut tracks, mut fixed) = (Vec::new(), Vec::new());
+    let (mut tracks, mut fixed, mut links) = (Vec::new(), Vec::new(), Vec::new());
     for (i, b) in bodies.iter().enumerate() {
         match &b.motion {
             Motion::Sampled(tr) => tracks.push((i, tr.samples())),
+            // A link stays within its lever about the arm's base, all the time.
+            Motion::Link(l) => {
+                let base = l.arm.base().pos;
+                let mut hull = Aabb::EMPTY;
+                hull.add(&base);
+                let reach = l.arm.lever(0, l.link);
+                links.push((i, hull.grown(reach + half, base.amax() + reach)));
+            }
             // Obstacles never move: one box each, from their vertices in world position.
             Motion::Fixed(p) => {
                 let posed = Posed::new(&b.shape, p.pos.x, p.pos.y, p.theta);
@@ -133,7 +141,7 @@ fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> 
             }
         }
     }
-    if tracks.is_empty() {
+    if tracks.is_empty() && links.is_empty() {
         return Vec::new();
     }
     let windows = window_count(scene, &tracks);
@@ -165,6 +173,7 @@ fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> 
             .iter()
             .zip(rows)
             .map(|(&(i, _), row)| (i, row[w]))
+            .chain(links.iter().copied())
             .chain(fixed.iter().copied())
             .collect();
         let mut found = Vec::new();
@@ -183,6 +192,7 @@ fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> 
     let robot = |i: usize| bodies[i].is_robot();
     let mut pairs: Vec<_> = found
         .into_iter()
+        .filter(|&(i, j)| !bodies[i].same_arm(&bodies[j]))
         .filter_map(|(i, j)| match (robot(i), robot(j)) {
             (true, true) => Some((false, i.min(j), i.max(j))),
             (true, false) => Some((true, i, j)),
@@ -254,6 +264,9 @@ fn window_count(scene: &Scene, tracks: &[(usize, &[Sample])]) -> usize {
             hull.size() / (2.0 * scene.bodies[i].shape.radius())
         })
         .collect();
+    if ratios.is_empty() {
+        return 1; // arms only: their boxes do not change with the window
+    }
     let mid = ratios.len() / 2;
     let ratio = *ratios.select_nth_unstable_by(mid, f64::total_cmp).1;
     // NaN casts to 0: one window.

@@ -114,6 +114,10 @@ pub struct Contact {
     /// `parts`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub parts: Option<[Option<usize>; 2]>,
+    /// For an arm, the 0-based index of its link in contact (contract section 6; `None` for
+    /// a body that is not an arm); left out when neither body is an arm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub links: Option<[Option<usize>; 2]>,
 }
 
 /// Where a pair spent its work budget before a proof or a witness.
@@ -426,6 +430,7 @@ fn report(
             distance: c.distance,
             interval: c.interval,
             parts: contact_parts(&scene.bodies[i], &scene.bodies[j], c.parts),
+            links: contact_links(&scene.bodies[i], &scene.bodies[j]),
         }),
         safe_until,
         stats,
@@ -436,6 +441,13 @@ fn report(
         pairs_pruned: all_pairs - pairs.len(),
         pair_stats,
     }
+}
+
+/// The links in contact as the report names them: the link's index for an arm, none for a
+/// body that is not one; left out when neither is an arm.
+fn contact_links(a: &super::Body, b: &super::Body) -> Option<[Option<usize>; 2]> {
+    let links = [a.link(), b.link()];
+    links.iter().any(Option::is_some).then_some(links)
 }
 
 /// The parts in contact as the report names them: an index for a body given by `parts`,
@@ -455,6 +467,7 @@ fn contact_parts(
 fn sample_count(body: &super::Body) -> usize {
     match &body.motion {
         crate::motion::Motion::Sampled(tr) => tr.samples().len(),
+        crate::motion::Motion::Link(l) => l.arm.samples().len(),
         crate::motion::Motion::Fixed(_) => 0,
     }
 }

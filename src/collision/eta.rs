@@ -1,6 +1,6 @@
 //! η(t): a lower bound of the distance between two bodies at time t.
 
-use super::span::Probe;
+use super::span::{LinkEnds, Probe, Span};
 use super::{Body, Stats};
 use crate::geometry::{
     bounding_box, closest_features, parts_distance, FeaturePair, PartsCache, PartsDistance,
@@ -48,12 +48,44 @@ impl<'s> Eta<'s> {
         self.a.shape.radius() + self.b.shape.radius()
     }
 
-    /// λ1 + λ2 from probe `l` to probe `r`, between which both poses are linear in time.
-    pub fn lambda(&self, bound: BoundKind, l: &Probe, r: &Probe) -> f64 {
-        let one = |body: &Body, p: &Pose, q: &Pose| {
-            lambda(bound, &body.motion, body.shape.radius(), (l.t, p), (r.t, q))
+    /// λ1 + λ2 from probe `l` to probe `r` of `span`, between which both poses are linear
+    /// in time (a link's joints are: its λ is the joint-rate bound, for either kind).
+    #[inline]
+    pub(super) fn lambda(&self, bound: BoundKind, span: &Span, l: &Probe, r: &Probe) -> f64 {
+        match &span.links {
+            None => {
+                self.rigid_lambda(bound, self.a, l, r, true)
+                    + self.rigid_lambda(bound, self.b, l, r, false)
+            }
+            Some(links) => self.lambda_with_links(bound, links, l, r),
+        }
+    }
+
+    #[inline]
+    fn rigid_lambda(&self, bound: BoundKind, body: &Body, l: &Probe, r: &Probe, a: bool) -> f64 {
+        let (p, q) = if a {
+            (&l.pose_a, &r.pose_a)
+        } else {
+            (&l.pose_b, &r.pose_b)
         };
-        one(self.a, &l.pose_a, &r.pose_a) + one(self.b, &l.pose_b, &r.pose_b)
+        lambda(bound, &body.motion, body.shape.radius(), (l.t, p), (r.t, q))
+    }
+
+    /// [`Eta::lambda`] for a pair with a link of an arm, out of the rigid pairs' way.
+    #[inline(never)]
+    #[cold]
+    fn lambda_with_links(
+        &self,
+        bound: BoundKind,
+        links: &[Option<LinkEnds>; 2],
+        l: &Probe,
+        r: &Probe,
+    ) -> f64 {
+        let one = |body: &Body, link: &Option<LinkEnds>, a: bool| match link {
+            Some(link) => link.lambda * (r.u - l.u),
+            None => self.rigid_lambda(bound, body, l, r, a),
+        };
+        one(self.a, &links[0], true) + one(self.b, &links[1], false)
     }
 
     /// η(t): the gap between the bounding discs (eq. 13) while it is at least δ, else the

@@ -20,6 +20,7 @@ impl<'a> Cursor<'a> {
     fn new(body: &'a Body) -> Self {
         let times = match &body.motion {
             Motion::Sampled(tr) => tr.samples(),
+            Motion::Link(l) => l.frames(),
             Motion::Fixed(_) => &[],
         };
         Cursor {
@@ -45,6 +46,7 @@ impl<'a> Cursor<'a> {
     fn pose(&self, t: f64) -> Pose {
         match self.motion {
             Motion::Sampled(tr) => tr.pose_after(self.after, t),
+            Motion::Link(l) => l.arm.pose_at(t, l.link),
             Motion::Fixed(p) => *p,
         }
     }

@@ -4,8 +4,9 @@
 use super::eta::Eta;
 use super::grid::MergedGrid;
 use super::method::{Method, Scratch};
-use super::span::{PairSettings, Probe, Span, Stop};
+use super::span::{LinkEnds, PairSettings, Probe, Span, Stop};
 use super::{Body, Stats};
+use crate::motion::Motion;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// A contact found on one pair.
@@ -190,6 +191,7 @@ impl<'a> PairCheck<'a> {
                 t1: t,
                 a: (left.pose_a, right.pose_a),
                 b: (left.pose_b, right.pose_b),
+                links: links_of(eta.a, eta.b, left.t, t),
             };
             let ends = (Probe { u: 0.0, ..*left }, Probe { u: 1.0, ..right });
             match method.search(eta, &span, ends, s, scratch, stats) {
@@ -240,4 +242,29 @@ impl<'a> PairCheck<'a> {
     pub fn merged_intervals(&self) -> usize {
         self.reached + self.grid.clone().count_rest()
     }
+}
+
+/// The joints at both ends of `[t0, t1]` of each body that is a link of an arm; `None` for a
+/// pair of rigid bodies.
+#[inline]
+fn links_of<'s>(
+    a: &'s Body,
+    b: &'s Body,
+    t0: f64,
+    t1: f64,
+) -> Option<Box<[Option<LinkEnds<'s>>; 2]>> {
+    match (&a.motion, &b.motion) {
+        (Motion::Link(_), _) | (_, Motion::Link(_)) => Some(links_of_arms(a, b, t0, t1)),
+        _ => None,
+    }
+}
+
+#[inline(never)]
+#[cold]
+fn links_of_arms<'s>(a: &'s Body, b: &'s Body, t0: f64, t1: f64) -> Box<[Option<LinkEnds<'s>>; 2]> {
+    let link = |body: &'s Body| match &body.motion {
+        Motion::Link(l) => Some(LinkEnds::new(l, t0, t1)),
+        _ => None,
+    };
+    Box::new([link(a), link(b)])
 }

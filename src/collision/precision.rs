@@ -24,12 +24,7 @@ pub const MIN_TIME_TOL_OVER_ULP: f64 = 16.0;
 
 /// Where a body's fields start in the scene file: `robots[k]` or `obstacles[k]`.
 fn field_of(scene: &Scene, k: usize) -> String {
-    let robots = scene.bodies.iter().filter(|b| b.is_robot()).count();
-    if k < robots {
-        format!("robots[{k}]")
-    } else {
-        format!("obstacles[{}]", k - robots)
-    }
+    scene.field_of(k)
 }
 
 /// Refuses a shape whose clean-up (repeated and collinear vertices removed) moved its
@@ -177,7 +172,7 @@ pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), Inp
         let r = body.shape.radius();
         match &body.motion {
             Motion::Sampled(tr) => {
-                let at = format!("robots[{k}]");
+                let at = field_of(scene, k);
                 if r > limit {
                     let reason = too_large(r, "the shape's radius");
                     return Err(InputError::new(
@@ -203,6 +198,36 @@ pub fn check_precision(scene: &Scene, delta: f64, file: &Path) -> Result<(), Inp
                             field,
                             too_large(v, what),
                         ));
+                    }
+                }
+            }
+            Motion::Link(l) => {
+                let at = field_of(scene, k);
+                let robot = at.split(".links").next().unwrap_or(&at).to_owned();
+                let refuse = |field: String, v: f64, what: &str| {
+                    Err(InputError::new(
+                        file,
+                        Some(&body.name),
+                        field,
+                        too_large(v, what),
+                    ))
+                };
+                let (base, reach) = (l.arm.base(), l.arm.lever(0, l.link));
+                if base.pos.amax() + reach > limit {
+                    return refuse(
+                        format!("{robot}.base"),
+                        base.pos.amax() + reach,
+                        "coordinate",
+                    );
+                }
+                // An angle is resolved to within ulp(q); at the link's far end that is a length.
+                for (i, sample) in l.arm.samples().iter().enumerate() {
+                    for j in 0..=l.link {
+                        let arc = l.arm.lever(j, l.link) * sample.q[j];
+                        if arc.abs() > limit {
+                            let field = format!("{robot}.trajectory[{i}].q[{j}]");
+                            return refuse(field, arc, "arc length lever x q");
+                        }
                     }
                 }
             }

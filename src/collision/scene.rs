@@ -2,9 +2,10 @@
 
 use crate::error::InputError;
 use crate::geometry::{ConvexPolygon, Parts};
-use crate::motion::{Motion, Pose, Trajectory};
+use crate::motion::{ArmMotion, LinkMotion, Motion, Pose, Trajectory};
 use std::collections::HashSet;
 use std::path::Path;
+use std::sync::Arc;
 
 /// A robot or an obstacle.
 #[derive(Clone, Debug, PartialEq)]
@@ -109,9 +110,61 @@ impl Body {
         }
     }
 
-    /// True for a body that moves along a trajectory.
+    /// The links of an arm named `name` (contract section 6): one body per link, each given
+    /// in its link's frame (origin at its joint, x along the link) as a convex shape or
+    /// parts, all moved by `arm`. The links share the arm's name; [`Body::link`] tells them
+    /// apart, and links of one arm are never checked against each other.
+    ///
+    /// ```
+    /// use workcell::collision::{Body, Scene};
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{ArmMotion, JointSample, Pose};
+    /// let bar = |l: f64| Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.1, -0.1], [l + 0.1, -0.1], [l + 0.1, 0.1], [-0.1, 0.1]])?]);
+    /// let links = vec![bar(1.0)?, bar(0.6)?];
+    /// let s = |t: f64, q: [f64; 2]| JointSample { t, q: q.to_vec(), qd: Vec::new() };
+    /// let reach = links.iter().map(|p| p.hull().radius()).collect();
+    /// let arm = ArmMotion::new(Pose::new(0.0, 0.0, 0.0), vec![1.0, 0.6], reach, vec![s(0.0, [0.0, 0.0]), s(1.0, [1.0, -1.0])])?;
+    /// let bodies = Body::arm("A1", arm, links);
+    /// assert_eq!((bodies.len(), bodies[1].link()), (2, Some(1)));
+    /// assert!(bodies[0].same_arm(&bodies[1]));
+    /// let scene = Scene::with_bodies(0.01, bodies)?;
+    /// assert_eq!(scene.pair_count(), 0); // links of one arm are not checked against each other
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn arm(name: impl Into<String>, arm: ArmMotion, links: Vec<Parts>) -> Vec<Body> {
+        let name = name.into();
+        let arm = Arc::new(arm);
+        links
+            .into_iter()
+            .enumerate()
+            .map(|(link, parts)| Body {
+                name: name.clone(),
+                shape: parts.hull().clone(),
+                parts: (!parts.is_convex()).then_some(parts),
+                motion: Motion::Link(LinkMotion::new(arm.clone(), link)),
+            })
+            .collect()
+    }
+
+    /// True for a body that moves: along a trajectory, or as a link of an arm.
     pub fn is_robot(&self) -> bool {
-        matches!(self.motion, Motion::Sampled(_))
+        matches!(self.motion, Motion::Sampled(_) | Motion::Link(_))
+    }
+
+    /// For a link of an arm, its index (0 at the base).
+    pub fn link(&self) -> Option<usize> {
+        match &self.motion {
+            Motion::Link(l) => Some(l.link),
+            _ => None,
+        }
+    }
+
+    /// Whether both bodies are links of one arm (never checked against each other).
+    pub fn same_arm(&self, other: &Body) -> bool {
+        match (&self.motion, &other.motion) {
+            (Motion::Link(a), Motion::Link(b)) => a.same_arm(b),
+            _ => false,
+        }
     }
 }
 
@@ -168,9 +221,13 @@ impl Scene {
     ) -> Result<Self, InputError> {
         let mut scene = Scene::new(delta)?;
         let mut names = HashSet::new();
-        let mut obstacles = Vec::new();
+        let mut obstacles: Vec<Body> = Vec::new();
         for (k, body) in bodies.into_iter().enumerate() {
-            check_name(&body.name, k, |name| !names.insert(name.to_owned()))?;
+            // A later link of the arm just added shares its name.
+            let sibling = scene.bodies.last().is_some_and(|b| b.same_arm(&body));
+            check_name(&body.name, k, |name| {
+                !sibling && !names.insert(name.to_owned())
+            })?;
             if body.is_robot() {
                 scene.bodies.push(body);
             } else {
@@ -204,7 +261,9 @@ impl Scene {
     pub fn add(&mut self, body: Body) -> Result<&mut Self, InputError> {
         let k = self.bodies.len();
         check_name(&body.name, k, |name| {
-            self.bodies.iter().any(|b| b.name == name)
+            self.bodies
+                .iter()
+                .any(|b| b.name == name && !b.same_arm(&body))
         })?;
         let at = if body.is_robot() {
             self.robot_count()
@@ -231,10 +290,7 @@ impl Scene {
     /// ```
     pub fn horizon(&self) -> (f64, f64) {
         // A trajectory's times strictly increase: its first and last samples are its ends.
-        let mut ends = self.bodies.iter().filter_map(|b| match &b.motion {
-            Motion::Sampled(tr) => Some((tr.samples().first()?.t, tr.samples().last()?.t)),
-            Motion::Fixed(_) => None,
-        });
+        let mut ends = self.bodies.iter().filter_map(|b| b.motion.span());
         match ends.next() {
             None => (0.0, 0.0),
             Some(first) => ends.fold(first, |(lo, hi), (t0, t1)| (lo.min(t0), hi.max(t1))),
@@ -263,8 +319,10 @@ impl Scene {
         let n = self.bodies.len();
         let robot = |i: &usize| self.bodies[*i].is_robot();
         let mut pairs = Vec::with_capacity(self.pair_count());
+        let bodies = &self.bodies;
         for i in (0..n).filter(robot) {
-            pairs.extend((i + 1..n).filter(robot).map(|j| (i, j)));
+            let apart = |j: &usize| robot(j) && !bodies[i].same_arm(&bodies[*j]);
+            pairs.extend((i + 1..n).filter(apart).map(|j| (i, j)));
         }
         for i in (0..n).filter(robot) {
             pairs.extend((0..n).filter(|j| !robot(j)).map(|j| (i, j)));
@@ -281,7 +339,41 @@ impl Scene {
     pub fn pair_count(&self) -> usize {
         let robots = self.robot_count();
         let obstacles = self.bodies.len() - robots;
-        robots * robots.saturating_sub(1) / 2 + robots * obstacles
+        // Links of one arm are consecutive: an arm of k links leaves out k(k − 1)/2 pairs.
+        let mut siblings = 0;
+        let mut run = 0;
+        for (k, b) in self.bodies.iter().enumerate() {
+            run = match k.checked_sub(1) {
+                Some(p) if self.bodies[p].same_arm(b) => run + 1,
+                _ => 0,
+            };
+            siblings += run;
+        }
+        robots * robots.saturating_sub(1) / 2 + robots * obstacles - siblings
+    }
+
+    /// The field of body `k` in its file: `robots[r]` (with `.links[l]` for a link of an
+    /// arm, `r` counting an arm once) or `obstacles[o]`.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/paper-fig12a.json");
+    /// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+    /// assert_eq!(scene.field_of(1), "robots[1]");
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn field_of(&self, k: usize) -> String {
+        let bodies = &self.bodies;
+        let first_of_robot = |i: usize| i == 0 || !bodies[i - 1].same_arm(&bodies[i]);
+        if bodies[k].is_robot() {
+            let started = (0..k).filter(|&i| first_of_robot(i)).count();
+            let r = started - usize::from(!first_of_robot(k));
+            match bodies[k].link() {
+                Some(l) => format!("robots[{r}].links[{l}]"),
+                None => format!("robots[{r}]"),
+            }
+        } else {
+            format!("obstacles[{}]", k - self.robot_count())
+        }
     }
 }
 

@@ -3,7 +3,7 @@
 
 use super::stats::Stats;
 use crate::geometry::{Vec2, WalkTolerances};
-use crate::motion::Pose;
+use crate::motion::{LinkMotion, Pose};
 
 /// Settings of a pair check, in the scene's units.
 #[derive(Clone, Copy, Debug)]
@@ -56,19 +56,56 @@ pub struct Probe {
     pub normal: Vec2,
 }
 
-/// One merged interval: both poses are linear in time between its ends.
+/// One merged interval: both poses are linear in time between its ends (for a link of an
+/// arm, its joint angles are).
 ///
 /// Points inside it are addressed by a parameter u in [0, 1], not by time: the poses
 /// are interpolated between the ends directly, so bisection keeps its resolution even where
 /// time stamps are huge or an interval is a single unit in the last place long.
-pub(super) struct Span {
+pub(super) struct Span<'s> {
     pub t0: f64,
     pub t1: f64,
     pub a: (Pose, Pose),
     pub b: (Pose, Pose),
+    /// For a pair with a link of an arm, each link's joints at the ends (`None` for a pair of
+    /// rigid bodies: their path stays as lean as before arms).
+    pub links: Option<Box<[Option<LinkEnds<'s>>; 2]>>,
 }
 
-impl Span {
+/// A link's joint angles at both ends of a merged interval, and its motion bound over it.
+pub(super) struct LinkEnds<'s> {
+    pub motion: &'s LinkMotion,
+    pub q0: Vec<f64>,
+    pub q1: Vec<f64>,
+    /// λ of the link over the whole interval (Schwarzer, Saha & Latombe 2005).
+    pub lambda: f64,
+}
+
+impl<'s> LinkEnds<'s> {
+    pub fn new(motion: &'s LinkMotion, t0: f64, t1: f64) -> Self {
+        let (q0, q1) = (motion.arm.q_at(t0), motion.arm.q_at(t1));
+        let lambda = motion.arm.lambda(motion.link, &q0, &q1);
+        LinkEnds {
+            motion,
+            q0,
+            q1,
+            lambda,
+        }
+    }
+
+    /// The link's pose at `u`: its joints interpolated, then forward kinematics.
+    fn pose(&self, u: f64) -> Pose {
+        let q: Vec<f64> = self
+            .q0
+            .iter()
+            .zip(&self.q1)
+            .map(|(a, b)| a + (b - a) * u)
+            .collect();
+        self.motion.arm.link_pose(&q, self.motion.link)
+    }
+}
+
+impl Span<'_> {
     pub fn time(&self, u: f64) -> f64 {
         if u == 1.0 {
             self.t1
@@ -117,8 +154,33 @@ impl Span {
         }
     }
 
+    #[inline]
     pub fn poses(&self, u: f64) -> (Pose, Pose) {
-        (lerp(&self.a, u), lerp(&self.b, u))
+        match &self.links {
+            None => (lerp(&self.a, u), lerp(&self.b, u)),
+            Some(links) => self.poses_with_links(links, u),
+        }
+    }
+
+    /// [`Span::poses`] for a pair with a link of an arm, out of the rigid pairs' way.
+    #[inline(never)]
+    #[cold]
+    fn poses_with_links(&self, links: &[Option<LinkEnds>; 2], u: f64) -> (Pose, Pose) {
+        let pose = |ends: &(Pose, Pose), link: &Option<LinkEnds>| match link {
+            None => lerp(ends, u),
+            Some(link) => match u {
+                0.0 => ends.0,
+                1.0 => ends.1,
+                _ => link.pose(u),
+            },
+        };
+        (pose(&self.a, &links[0]), pose(&self.b, &links[1]))
+    }
+
+    /// Whether either body is a link of an arm (whose pose is not linear in time).
+    #[inline]
+    pub fn has_links(&self) -> bool {
+        self.links.is_some()
     }
 }
 

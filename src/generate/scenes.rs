@@ -477,6 +477,7 @@ mod tests {
     fn offsets(b: &Body, c: Vec2) -> Vec<Vec<Vec2>> {
         let poses = match &b.motion {
             Motion::Sampled(tr) => tr.samples().iter().map(|s| (s.pos, s.theta)).collect(),
+            Motion::Link(_) => unreachable!("the generated rigid scenes have no arms"),
             Motion::Fixed(p) => vec![(p.pos, p.theta)],
         };
         poses

@@ -6,11 +6,15 @@
 //! * [`lambda`]: the motion bound λ of the Schwarzer-Saha-Latombe condition, rigorous or
 //!   the paper's velocity-based eq. (12).
 
+mod arm;
 mod bounds;
+mod motion_kind;
 mod profile;
 mod trajectory;
 
+pub use arm::{forward_kinematics, ArmError, ArmMotion, JointSample, LinkMotion};
 pub use bounds::{lambda, BoundKind};
+pub use motion_kind::Motion;
 pub use profile::rest_to_rest_time;
 pub(crate) use profile::Trapezoid;
-pub use trajectory::{Motion, Pose, Sample, Trajectory, TrajectoryError};
+pub use trajectory::{Pose, Sample, Trajectory, TrajectoryError};

@@ -332,53 +332,6 @@ impl Trajectory {
     }
 }
 
-/// How a body moves: along a sampled trajectory (robots) or not at all (obstacles).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Motion {
-    /// A robot's sampled trajectory.
-    Sampled(Trajectory),
-    /// A body that never moves.
-    Fixed(Pose),
-}
-
-impl Motion {
-    /// Pose at time `t`.
-    ///
-    /// ```
-    /// use workcell::motion::{Motion, Pose, Trajectory};
-    /// let robot = Motion::Sampled(Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0)), (1.0, Pose::new(2.0, 0.0, 0.0))])?);
-    /// assert_eq!(robot.pose_at(0.5), Pose::new(1.0, 0.0, 0.0));
-    /// let post = Motion::Fixed(Pose::new(5.0, 5.0, 0.0));
-    /// assert_eq!(post.pose_at(1e6), Pose::new(5.0, 5.0, 0.0));
-    /// # Ok::<(), workcell::motion::TrajectoryError>(())
-    /// ```
-    #[inline]
-    pub fn pose_at(&self, t: f64) -> Pose {
-        match self {
-            Motion::Sampled(tr) => tr.pose_at(t),
-            Motion::Fixed(p) => *p,
-        }
-    }
-
-    /// Given velocity and angular velocity at `t` (zero for a fixed body).
-    #[inline]
-    pub fn velocity_at(&self, t: f64) -> (Vec2, f64) {
-        match self {
-            Motion::Sampled(tr) => tr.velocity_at(t),
-            Motion::Fixed(_) => (Vec2::zeros(), 0.0),
-        }
-    }
-
-    /// Sample times: the ends of the pieces on which the pose is linear in time.
-    pub fn times(&self) -> impl Iterator<Item = f64> + '_ {
-        let samples = match self {
-            Motion::Sampled(tr) => tr.samples(),
-            Motion::Fixed(_) => &[],
-        };
-        samples.iter().map(|s| s.t)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

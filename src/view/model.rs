@@ -175,6 +175,13 @@ fn robots_of(scene: &Scene) -> Vec<RobotView> {
                     .iter()
                     .map(|s| [s.t, s.pos.x, s.pos.y, s.theta])
                     .collect(),
+                // A link drawn at its arm's sample times (between them the page interpolates
+                // the link's pose, not the joints).
+                Motion::Link(l) => l
+                    .frames()
+                    .iter()
+                    .map(|s| [s.t, s.pos.x, s.pos.y, s.theta])
+                    .collect(),
                 Motion::Fixed(p) => vec![[0.0, p.pos.x, p.pos.y, p.theta]],
             },
             home: None,

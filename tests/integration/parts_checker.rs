@@ -257,6 +257,7 @@ impl Reference {
                     p.vertices().iter().map(|v| [v.x, v.y]).collect()
                 };
                 match &b.motion {
+                    Motion::Link(_) => unreachable!("these scenes have no arms"),
                     Motion::Sampled(tr) => RefBody {
                         parts: shapes.into_iter().map(vertices).collect(),
                         samples: Some(

@@ -1,0 +1,434 @@
+//! Arms in `check` (contract section 6) against an exact reference: conservative
+//! advancement on the link polygons, placed by its own forward kinematics, with the
+//! independent oracle's exact distance, and the joint-rate speed bound of each link on each
+//! segment of its samples.
+
+use crate::common::{exact_distance, pose_at, proptest_config, Shape};
+use proptest::prelude::*;
+use rayon::ThreadPoolBuilder;
+use serde_json::{json, Value};
+use std::f64::consts::TAU;
+use std::path::Path;
+use workcell::cell::parse_scene;
+use workcell::collision::{check, CheckOptions, CheckReport, Scene};
+
+const DELTA: f64 = 0.01;
+
+/// An arm as the test draws it: base, link lengths, each link's polygon in its frame, and
+/// samples `(t, q)`.
+#[derive(Clone, Debug)]
+struct ArmSpec {
+    name: String,
+    base: [f64; 3],
+    lengths: Vec<f64>,
+    links: Vec<Shape>,
+    samples: Vec<(f64, Vec<f64>)>,
+}
+
+/// A rigid robot: a polygon and samples `[t, x, y, θ]`.
+#[derive(Clone, Debug)]
+struct RigidSpec {
+    shape: Shape,
+    samples: Vec<[f64; 4]>,
+}
+
+#[derive(Clone, Debug)]
+struct SceneSpec {
+    arms: Vec<ArmSpec>,
+    rigid: Option<RigidSpec>,
+    fixture: Shape,
+}
+
+fn bar(length: f64, w: f64) -> Shape {
+    vec![[-w, -w], [length + w, -w], [length + w, w], [-w, w]]
+}
+
+fn arm(name: &'static str, base: [f64; 3]) -> impl Strategy<Value = ArmSpec> {
+    let links = prop::collection::vec((0.3..0.9f64, 0.04..0.12f64), 2..=3);
+    (links, 2..=6usize, 0.05..2.0f64, any::<u64>()).prop_map(move |(links, n, dt, seed)| {
+        // Angles from a small deterministic generator: some joints turn several times.
+        let mut state = seed | 1;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let spin = next() < 0.3;
+        let mut t = 0.0;
+        let samples = (0..n)
+            .map(|_| {
+                let q: Vec<f64> = links
+                    .iter()
+                    .map(|_| {
+                        let range = if spin { 3.0 * TAU } else { 2.0 };
+                        (next() - 0.5) * 2.0 * range
+                    })
+                    .collect();
+                let sample = (t, q);
+                t += dt * (0.2 + next());
+                sample
+            })
+            .collect();
+        ArmSpec {
+            name: name.into(),
+            base,
+            lengths: links.iter().map(|l| l.0).collect(),
+            links: links.iter().map(|&(l, w)| bar(l, w)).collect(),
+            samples,
+        }
+    })
+}
+
+fn scene_spec() -> impl Strategy<Value = SceneSpec> {
+    let a = arm("A1", [0.0, 0.0, 0.0]);
+    let b =
+        (1.4..4.2f64, -0.6..0.6f64, -3.0..3.0f64).prop_flat_map(|(x, y, th)| arm("A2", [x, y, th]));
+    let rigid = prop::option::of(
+        prop::collection::vec((-1.0..3.0f64, -1.5..1.5f64, -2.0..2.0f64), 2..=4).prop_map(
+            |points| RigidSpec {
+                shape: bar(0.2, 0.1),
+                samples: points
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(x, y, th))| [k as f64 * 0.7, x, y, th])
+                    .collect(),
+            },
+        ),
+    );
+    let fixture = (-1.0..3.0f64, -1.8..1.8f64)
+        .prop_map(|(x, y)| vec![[x, y], [x + 0.3, y], [x + 0.3, y + 0.2], [x, y + 0.2]]);
+    (a, b, rigid, fixture).prop_map(|(a, b, rigid, fixture)| SceneSpec {
+        arms: vec![a, b],
+        rigid,
+        fixture,
+    })
+}
+
+impl SceneSpec {
+    fn document(&self) -> Value {
+        let mut robots: Vec<Value> = self
+            .arms
+            .iter()
+            .map(|a| {
+                let links: Vec<Value> = a
+                    .lengths
+                    .iter()
+                    .zip(&a.links)
+                    .map(|(l, s)| json!({"length": l, "shape": s}))
+                    .collect();
+                let samples: Vec<Value> = a
+                    .samples
+                    .iter()
+                    .map(|(t, q)| json!({"t": t, "q": q}))
+                    .collect();
+                json!({"name": a.name, "base": a.base, "links": links, "trajectory": samples})
+            })
+            .collect();
+        if let Some(r) = &self.rigid {
+            let samples: Vec<Value> = r
+                .samples
+                .iter()
+                .map(|s| json!({"t": s[0], "x": s[1], "y": s[2], "theta": s[3]}))
+                .collect();
+            robots.push(json!({"name": "R", "shape": r.shape, "trajectory": samples}));
+        }
+        json!({"delta": DELTA, "robots": robots,
+               "obstacles": [{"name": "F", "shape": self.fixture}]})
+    }
+
+    fn scene(&self) -> Scene {
+        parse_scene(&self.document().to_string(), Path::new("arms.json"))
+            .unwrap()
+            .scene
+    }
+
+    /// The reference's bodies in the scene's order: each link of each arm, the rigid robot,
+    /// the fixture.
+    fn bodies(&self) -> Vec<RefBody<'_>> {
+        let mut out: Vec<RefBody> = Vec::new();
+        for a in &self.arms {
+            out.extend((0..a.links.len()).map(|k| RefBody::Link(a, k)));
+        }
+        if let Some(r) = &self.rigid {
+            out.push(RefBody::Rigid(r));
+        }
+        out.push(RefBody::Fixed(&self.fixture));
+        out
+    }
+
+    fn horizon(&self) -> (f64, f64) {
+        let mut ts: Vec<f64> = self
+            .arms
+            .iter()
+            .flat_map(|a| a.samples.iter().map(|s| s.0))
+            .collect();
+        if let Some(r) = &self.rigid {
+            ts.extend(r.samples.iter().map(|s| s[0]));
+        }
+        ts.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                (lo.min(t), hi.max(t))
+            })
+    }
+}
+
+#[derive(Clone, Copy)]
+enum RefBody<'s> {
+    Link(&'s ArmSpec, usize),
+    Rigid(&'s RigidSpec),
+    Fixed(&'s Shape),
+}
+
+/// The joint angles of `a` at `t`: linear per joint, held outside the samples.
+fn q_at(a: &ArmSpec, t: f64) -> Vec<f64> {
+    let s = &a.samples;
+    if t <= s[0].0 {
+        return s[0].1.clone();
+    }
+    let last = &s[s.len() - 1];
+    if t >= last.0 {
+        return last.1.clone();
+    }
+    let k = s.iter().rposition(|x| x.0 <= t).unwrap();
+    let (p, q) = (&s[k], &s[k + 1]);
+    let u = (t - p.0) / (q.0 - p.0);
+    p.1.iter().zip(&q.1).map(|(a, b)| a + (b - a) * u).collect()
+}
+
+/// The test's own forward kinematics (contract section 6).
+fn link_pose(a: &ArmSpec, q: &[f64], link: usize) -> [f64; 3] {
+    let (mut x, mut y) = (a.base[0], a.base[1]);
+    let mut th = a.base[2] + q[0];
+    for (length, turn) in a.lengths[..link].iter().zip(&q[1..=link]) {
+        x += length * th.cos();
+        y += length * th.sin();
+        th += turn;
+    }
+    [x, y, th]
+}
+
+fn radius(shape: &Shape) -> f64 {
+    shape.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max)
+}
+
+impl RefBody<'_> {
+    fn robot(&self) -> bool {
+        !matches!(self, RefBody::Fixed(_))
+    }
+
+    fn world(&self, t: f64) -> Shape {
+        match *self {
+            RefBody::Link(a, k) => {
+                let pose = link_pose(a, &q_at(a, t), k);
+                crate::common::place(&a.links[k], pose)
+            }
+            RefBody::Rigid(r) => crate::common::place(&r.shape, pose_at(&r.samples, t)),
+            RefBody::Fixed(s) => s.clone(),
+        }
+    }
+
+    /// How fast any point can move on the segment holding `t`, and when that segment ends.
+    fn speed_bound(&self, t: f64) -> (f64, f64) {
+        let segment = |times: &[f64]| {
+            times
+                .windows(2)
+                .position(|w| w[0] <= t && t < w[1])
+                .ok_or(if t < times[0] {
+                    times[0]
+                } else {
+                    f64::INFINITY
+                })
+        };
+        match *self {
+            RefBody::Fixed(_) => (0.0, f64::INFINITY),
+            RefBody::Rigid(r) => {
+                let times: Vec<f64> = r.samples.iter().map(|s| s[0]).collect();
+                match segment(&times) {
+                    Err(end) => (0.0, end),
+                    Ok(i) => {
+                        let (p, q) = (r.samples[i], r.samples[i + 1]);
+                        let travel = (q[1] - p[1]).hypot(q[2] - p[2])
+                            + radius(&r.shape) * (q[3] - p[3]).abs();
+                        (travel / (q[0] - p[0]), q[0])
+                    }
+                }
+            }
+            RefBody::Link(a, k) => {
+                let times: Vec<f64> = a.samples.iter().map(|s| s.0).collect();
+                match segment(&times) {
+                    Err(end) => (0.0, end),
+                    Ok(i) => {
+                        let (p, q) = (&a.samples[i], &a.samples[i + 1]);
+                        let dt = q.0 - p.0;
+                        let lever =
+                            |j: usize| a.lengths[j..k].iter().sum::<f64>() + radius(&a.links[k]);
+                        let v: f64 = (0..=k)
+                            .map(|j| (q.1[j] - p.1[j]).abs() / dt * lever(j))
+                            .sum();
+                        (v, q.0)
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Conservative advancement of one pair (as in `parts_checker`): the first time closer than δ
+/// with the end of the prefix proven before it; `Err` for a graze it cannot decide.
+fn first_contact(
+    a: RefBody,
+    b: RefBody,
+    (h0, h1): (f64, f64),
+    min_step: f64,
+) -> Result<Option<(f64, f64)>, ()> {
+    let mut t = h0;
+    let mut unproven_from: Option<f64> = None;
+    loop {
+        let d = exact_distance(&a.world(t), &b.world(t));
+        if d < DELTA {
+            return Ok(Some((unproven_from.unwrap_or(t), t)));
+        }
+        let ((va, ea), (vb, eb)) = (a.speed_bound(t), b.speed_bound(t));
+        let segment_end = ea.min(eb).min(h1);
+        let step = if va + vb > 0.0 {
+            (d - DELTA) / (va + vb)
+        } else {
+            f64::INFINITY
+        };
+        if step >= min_step || t >= h1 {
+            if unproven_from.is_some() {
+                return Err(());
+            }
+            if t >= h1 {
+                return Ok(None);
+            }
+            t = if step >= segment_end - t {
+                segment_end
+            } else {
+                t + step
+            };
+            continue;
+        }
+        unproven_from.get_or_insert(t);
+        t = (t + min_step).min(h1);
+    }
+}
+
+/// Every pair the scene checks, in its order: robots against robots (never two links of one
+/// arm), then robots against the fixture.
+fn pairs(bodies: &[RefBody]) -> Vec<(usize, usize)> {
+    let same_arm = |i: usize, j: usize| match (bodies[i], bodies[j]) {
+        (RefBody::Link(a, _), RefBody::Link(b, _)) => std::ptr::eq(a, b),
+        _ => false,
+    };
+    let n = bodies.len();
+    let robot = |k: &usize| bodies[*k].robot();
+    let mut out = Vec::new();
+    for i in (0..n).filter(robot) {
+        out.extend(
+            (i + 1..n)
+                .filter(|j| robot(j) && !same_arm(i, *j))
+                .map(|j| (i, j)),
+        );
+    }
+    for i in (0..n).filter(robot) {
+        out.extend((0..n).filter(|j| !robot(j)).map(|j| (i, j)));
+    }
+    out
+}
+
+fn agrees(spec: &SceneSpec) -> Result<Option<bool>, TestCaseError> {
+    let scene = spec.scene();
+    let opts = CheckOptions::default();
+    let report = check(&scene, &opts);
+    let tol = report.time_tol;
+    let bodies = spec.bodies();
+    prop_assert_eq!(bodies.len(), scene.bodies.len());
+    let mut truth: Option<(f64, f64, (usize, usize))> = None;
+    for (i, j) in pairs(&bodies) {
+        let Ok(found) = first_contact(bodies[i], bodies[j], spec.horizon(), tol / 8.0) else {
+            return Ok(None); // a graze the reference cannot decide
+        };
+        if let Some((proven, hit)) = found {
+            if truth.is_none_or(|(_, h, _)| hit < h) {
+                truth = Some((proven, hit, (i, j)));
+            }
+        }
+    }
+    prop_assert!(
+        report.certified || report.stats.grazing > 0,
+        "{:?}",
+        report.stats
+    );
+    prop_assert_eq!(report.stats.unresolved, 0);
+    match (truth, &report.first_contact) {
+        (None, None) => {}
+        (Some((_, hit, pair)), None) => prop_assert!(false, "missed: {pair:?} at t = {hit}"),
+        (None, Some(c)) => prop_assert!(false, "invented: {c:?}"),
+        (Some((proven, hit, _)), Some(c)) => {
+            let slack = 1e-12;
+            prop_assert!(
+                proven - slack <= c.time && c.time <= hit + tol + slack,
+                "contact at {}, the reference's first in [{proven}, {hit}]",
+                c.time
+            );
+            // The pair named, by name and link, is closer than δ at the time reported.
+            let index = |name: &str, link: Option<usize>| {
+                scene
+                    .bodies
+                    .iter()
+                    .position(|b| b.name == name && b.link() == link)
+                    .unwrap()
+            };
+            let links = c.links.unwrap_or([None, None]);
+            let (i, j) = (index(&c.bodies[0], links[0]), index(&c.bodies[1], links[1]));
+            let d = exact_distance(&bodies[i].world(c.time), &bodies[j].world(c.time));
+            prop_assert!(d < DELTA + 1e-9, "({i}, {j}) at {} is {d} apart", c.time);
+        }
+    }
+    for threads in [1, 2, 4] {
+        let pool = ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let again: CheckReport = pool.install(|| check(&scene, &opts));
+        prop_assert_eq!(&again, &report, "{} threads", threads);
+    }
+    Ok(Some(report.collision))
+}
+
+proptest! {
+    #![proptest_config(proptest_config(96))]
+
+    #[test]
+    fn arms_agree_with_conservative_advancement(spec in scene_spec()) {
+        agrees(&spec)?;
+    }
+}
+
+/// The drawn scenes are of every kind the property needs: free, colliding at the start,
+/// colliding later (mid-interval, after a certified prefix); few left undecided.
+#[test]
+fn arm_scenes_are_mixed() {
+    let mut runner = proptest::test_runner::TestRunner::new(proptest_config(120));
+    let (mut free, mut at_start, mut later, mut undecided) = (0, 0, 0, 0);
+    for _ in 0..120 {
+        let spec = crate::common::draw(&scene_spec(), &mut runner);
+        match agrees(&spec).expect("agrees") {
+            None => undecided += 1,
+            Some(false) => free += 1,
+            Some(true) => {
+                let report = check(&spec.scene(), &CheckOptions::default());
+                match report.first_contact {
+                    Some(c) if c.time > spec.horizon().0 => later += 1,
+                    _ => at_start += 1,
+                }
+            }
+        }
+    }
+    assert!(
+        free >= 15 && later >= 15 && undecided <= 6,
+        "{free} free, {at_start} at the start, {later} later, {undecided} undecided"
+    );
+}
