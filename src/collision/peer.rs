@@ -109,6 +109,10 @@ fn cast_pair(
     delta: f64,
     limit: &SharedLimit,
 ) -> Result<(Option<f64>, u64), ()> {
+    // parry's motions are rigid; a link's pose is not linear between its samples.
+    if a.link().is_some() || b.link().is_some() {
+        return Err(());
+    }
     let shape_a = parry_shape(a, delta).ok_or(())?;
     let shape_b = parry_shape(b, 0.0).ok_or(())?;
     let grid = merged_grid(a, b, horizon);
