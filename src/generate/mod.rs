@@ -4,6 +4,7 @@
 //! give the same document (a ChaCha8 stream per document, seeded from kind, seed and index;
 //! no clock, no hashing).
 
+mod arm_scenes;
 mod cells;
 mod conflict;
 mod parts_scenes;

@@ -2,7 +2,7 @@
 //! give the same [`Scene`] (a ChaCha8 stream per scene, no clock, no hashing).
 
 use super::smooth::{pick, time_grid, Smooth, R};
-use super::{mix, parts_scenes};
+use super::{arm_scenes, mix, parts_scenes};
 use crate::collision::{Body, Scene};
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::{Motion, Sample, Trajectory};
@@ -53,11 +53,22 @@ pub enum Kind {
     NotchClear,
     /// Two bodies of 10 to 30 convex parts on smooth motions; about half collide. δ = 0.01.
     ManyParts,
+    /// Two 2-link SCARA arms sharing a table, on smooth joint motions of 100 samples; about
+    /// half collide. δ = 0.01.
+    Arms,
+    /// An arm sweeping past a fixture 1.1δ to 1.5δ beyond its reach where the sweep passes.
+    /// Always free. δ = 0.01.
+    ArmSweep,
+    /// An arm whose joints turn several times between samples, past a post that no sample
+    /// meets. Always collides. δ = 0.01.
+    ArmSpin,
+    /// An arm and a rigid robot wandering across its reach; about half collide. δ = 0.01.
+    ArmRobot,
 }
 
 impl Kind {
     /// Every kind, in documentation order.
-    pub const ALL: [Kind; 12] = [
+    pub const ALL: [Kind; 16] = [
         Kind::Pairs,
         Kind::Tunnelling,
         Kind::NearMiss,
@@ -70,7 +81,14 @@ impl Kind {
         Kind::Bay,
         Kind::NotchClear,
         Kind::ManyParts,
+        Kind::Arms,
+        Kind::ArmSweep,
+        Kind::ArmSpin,
+        Kind::ArmRobot,
     ];
+
+    /// The kinds with arms (contract section 6).
+    pub const ARMS: [Kind; 4] = [Kind::Arms, Kind::ArmSweep, Kind::ArmSpin, Kind::ArmRobot];
 
     /// The kinds whose bodies are not convex (contract section 5).
     pub const PARTS: [Kind; 5] = [
@@ -96,6 +114,10 @@ impl Kind {
             Kind::Bay => "bay",
             Kind::NotchClear => "notch-clear",
             Kind::ManyParts => "many-parts",
+            Kind::Arms => "arms",
+            Kind::ArmSweep => "arm-sweep",
+            Kind::ArmSpin => "arm-spin",
+            Kind::ArmRobot => "arm-robot",
         }
     }
 
@@ -164,6 +186,10 @@ pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene
         Kind::Bay => parts_scenes::bay(rng, kind.delta()),
         Kind::NotchClear => parts_scenes::notch_clear(rng, kind.delta()),
         Kind::ManyParts => parts_scenes::many_parts(rng),
+        Kind::Arms => arm_scenes::arms(rng),
+        Kind::ArmSweep => arm_scenes::arm_sweep(rng, kind.delta()),
+        Kind::ArmSpin => arm_scenes::arm_spin(rng),
+        Kind::ArmRobot => arm_scenes::arm_robot(rng),
     };
     Scene {
         delta: kind.delta(),

@@ -1,0 +1,179 @@
+//! Scenes with arms (contract section 6): two SCARA arms sharing a table, an arm sweeping
+//! past a fixture just over δ away, joints of several turns that meet a post only between
+//! samples, and an arm against a rigid robot crossing its reach.
+
+use super::smooth::{time_grid, Smooth, R};
+use crate::collision::Body;
+use crate::geometry::{ConvexPolygon, Parts, Vec2};
+use crate::motion::{ArmMotion, JointSample, Pose, Sample, Trajectory};
+use rand::Rng;
+use std::f64::consts::{PI, TAU};
+
+/// A link `length` long and `2·half` wide along its frame's x axis, with rounded-off ends of
+/// `half` beyond its joints.
+fn link(length: f64, half: f64) -> Parts {
+    let bar = [
+        [-half, -half],
+        [length + half, -half],
+        [length + half, half],
+        [-half, half],
+    ];
+    let polygon = ConvexPolygon::from_vertices(&bar).expect("a link is a rectangle");
+    Parts::new(vec![polygon]).expect("one convex part")
+}
+
+/// An arm's bodies: links of these lengths and half-widths, moved through `samples`.
+fn arm(name: &str, base: Pose, links: &[(f64, f64)], samples: Vec<JointSample>) -> Vec<Body> {
+    let bodies: Vec<Parts> = links.iter().map(|&(l, h)| link(l, h)).collect();
+    let reach = bodies.iter().map(|p| p.hull().radius()).collect();
+    let lengths = links.iter().map(|l| l.0).collect();
+    let motion = ArmMotion::new(base, lengths, reach, samples).expect("generated arms are valid");
+    Body::arm(name, motion, bodies)
+}
+
+/// Smooth joint angles: each joint a sum of two sines about `centre`, of amplitude up to
+/// `swing`, sampled at `n` times over [0, 10].
+fn joint_samples(rng: &mut R, centre: &[f64], swing: f64, n: usize) -> Vec<JointSample> {
+    let waves: Vec<[(f64, f64, f64); 2]> = centre
+        .iter()
+        .map(|_| {
+            let mut wave = || {
+                (
+                    rng.random_range(0.2..1.0) * swing / 2.0,
+                    rng.random_range(0.1..0.8),
+                    rng.random_range(0.0..TAU),
+                )
+            };
+            [wave(), wave()]
+        })
+        .collect();
+    time_grid(rng, n, 0.0, 10.0)
+        .into_iter()
+        .map(|t| JointSample {
+            t,
+            q: centre
+                .iter()
+                .zip(&waves)
+                .map(|(c, w)| c + w.iter().map(|(a, f, p)| a * (f * t + p).sin()).sum::<f64>())
+                .collect(),
+            qd: Vec::new(),
+        })
+        .collect()
+}
+
+/// Two 2-link SCARA arms whose bases stand 1.4 to 2.6 apart, each reaching about 1.3 over
+/// the table between them, on smooth joint motions of 100 samples; about half collide.
+pub(super) fn arms(rng: &mut R) -> Vec<Body> {
+    let gap = rng.random_range(1.4..2.6);
+    let mut bodies = Vec::new();
+    // Folded to either side of the table's middle line at rest: the arms meet only when
+    // their motions bring them across it.
+    for (k, (x, facing, fold)) in [(0.0, 0.0, 1.0), (gap, PI, -1.0)].into_iter().enumerate() {
+        let links = [
+            (rng.random_range(0.6..0.8), 0.08),
+            (rng.random_range(0.4..0.6), 0.06),
+        ];
+        let swing = rng.random_range(0.8..2.0);
+        let samples = joint_samples(rng, &[0.7 * fold, -1.4 * fold], swing, 100);
+        let base = Pose::new(x, 0.0, facing);
+        bodies.extend(arm(&format!("A{}", k + 1), base, &links, samples));
+    }
+    bodies
+}
+
+/// One arm sweeping its straight 2 links about its base past a box whose near face is 1.1δ
+/// to 1.5δ beyond the farthest corner's circle, where the sweep passes: always free.
+pub(super) fn arm_sweep(rng: &mut R, delta: f64) -> Vec<Body> {
+    let links = [
+        (rng.random_range(0.5..0.9), 0.07),
+        (rng.random_range(0.3..0.6), 0.05),
+    ];
+    // Straight: the farthest point is the last link's outer corner.
+    let far = Vec2::new(links[0].0 + links[1].0 + links[1].1, links[1].1).norm();
+    let gap = rng.random_range(1.1..1.5) * delta;
+    let phi = rng.random_range(0.0..TAU);
+    let (dir, side) = (
+        Vec2::new(phi.cos(), phi.sin()),
+        Vec2::new(-phi.sin(), phi.cos()),
+    );
+    let near = (far + gap) * dir;
+    let corners = [
+        near - 0.2 * side,
+        near + 0.2 * side,
+        near + 0.2 * side + 0.3 * dir,
+        near - 0.2 * side + 0.3 * dir,
+    ];
+    let points: Vec<[f64; 2]> = corners.iter().map(|p| [p.x, p.y]).collect();
+    let fixture = ConvexPolygon::from_vertices(&points).expect("a box");
+    // The corner's own angle off the link: the sweep brings it to φ mid-way.
+    let corner = (links[1].1).atan2(links[0].0 + links[1].0 + links[1].1);
+    let mid = phi - corner;
+    let span = rng.random_range(0.6..2.5);
+    let n = rng.random_range(2..=12usize);
+    let samples = time_grid(rng, n, 0.0, 10.0)
+        .into_iter()
+        .map(|t| JointSample {
+            t,
+            q: vec![mid - span + 2.0 * span * t / 10.0, 0.0],
+            qd: Vec::new(),
+        })
+        .collect();
+    let mut bodies = arm("A1", Pose::new(0.0, 0.0, 0.0), &links, samples);
+    bodies.push(Body::obstacle("F1", &fixture));
+    bodies
+}
+
+/// A 2-link arm whose base joint turns 2 to 4 times between each pair of its few samples, past a
+/// post inside its reach: the samples all miss the post; the sweep between them does not.
+/// Always collides.
+pub(super) fn arm_spin(rng: &mut R) -> Vec<Body> {
+    let links = [(0.7, 0.06), (0.5, 0.05)];
+    let n = rng.random_range(2..=4usize);
+    // Straight at every sample, pointing away from the post (at angle π): the post stands
+    // 0.9 from the base, within the straight arm's reach.
+    let times = time_grid(rng, n, 0.0, 10.0);
+    let mut q = 0.0;
+    let mut samples = Vec::with_capacity(n);
+    for &t in &times {
+        samples.push(JointSample {
+            t,
+            q: vec![q, 0.0],
+            qd: Vec::new(),
+        });
+        q += TAU * rng.random_range(2..=4) as f64;
+    }
+    let mut bodies = arm("A1", Pose::new(0.0, 0.0, 0.0), &links, samples);
+    let post =
+        ConvexPolygon::from_vertices(&[[-1.0, -0.1], [-0.8, -0.1], [-0.8, 0.1], [-1.0, 0.1]])
+            .expect("a box");
+    bodies.push(Body::obstacle("post", &post));
+    bodies
+}
+
+/// A 2-link arm on smooth joint motions and a rigid robot wandering across its reach;
+/// about half collide.
+pub(super) fn arm_robot(rng: &mut R) -> Vec<Body> {
+    let links = [
+        (rng.random_range(0.6..0.9), 0.08),
+        (rng.random_range(0.4..0.6), 0.06),
+    ];
+    let swing = rng.random_range(1.0..2.5);
+    let samples = joint_samples(rng, &[0.0, 0.0], swing, 60);
+    let mut bodies = arm("A1", Pose::new(0.0, 0.0, 0.0), &links, samples);
+    let reach = links[0].0 + links[1].0;
+    let (r, dir) = (
+        rng.random_range(0.8..1.6) * reach,
+        rng.random_range(0.0..TAU),
+    );
+    let motion = Smooth::random(rng, [r * dir.cos(), r * dir.sin()], 0.8);
+    let samples: Vec<Sample> = time_grid(rng, 40, 0.0, 10.0)
+        .into_iter()
+        .map(|t| motion.sample(t))
+        .collect();
+    let square =
+        ConvexPolygon::from_vertices(&[[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]])
+            .expect("a square");
+    let trajectory = Trajectory::new(samples).expect("generated times increase");
+    bodies.push(Body::robot("R1", square, trajectory));
+    bodies
+}
