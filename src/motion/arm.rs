@@ -208,17 +208,21 @@ impl ArmMotion {
     /// # Ok::<(), workcell::motion::ArmError>(())
     /// ```
     pub fn q_at(&self, t: f64) -> Vec<f64> {
+        let (a, b, u) = self.segment(t);
+        (0..self.links()).map(|j| lerp(a[j], b[j], u)).collect()
+    }
+
+    /// The samples' angles about `t` and where `t` lies between them: `q(t)` is
+    /// `a + (b − a)·u` per joint (the same sample twice, u = 0, outside the samples).
+    fn segment(&self, t: f64) -> (&[f64], &[f64], f64) {
         let s = &self.samples;
         let k = s.partition_point(|x| x.t <= t);
-        if k == 0 {
-            return s[0].q.clone();
-        }
-        if k == s.len() {
-            return s[k - 1].q.clone();
+        if k == 0 || k == s.len() {
+            let at = &s[k.saturating_sub(1)].q;
+            return (at, at, 0.0);
         }
         let (a, b) = (&s[k - 1], &s[k]);
-        let u = (t - a.t) / (b.t - a.t);
-        a.q.iter().zip(&b.q).map(|(p, q)| p + (q - p) * u).collect()
+        (&a.q, &b.q, (t - a.t) / (b.t - a.t))
     }
 
     /// The given joint velocities at `t`: those of the segment about it (zero outside the
@@ -268,7 +272,20 @@ impl ArmMotion {
     /// # Ok::<(), workcell::motion::ArmError>(())
     /// ```
     pub fn pose_at(&self, t: f64, link: usize) -> Pose {
-        self.link_pose(&self.q_at(t), link)
+        let (a, b, u) = self.segment(t);
+        self.pose_between(a, b, u, link)
+    }
+
+    /// Link `link`'s pose at joint angles `a + (b − a)·u`, without gathering them.
+    pub(crate) fn pose_between(&self, a: &[f64], b: &[f64], u: f64, link: usize) -> Pose {
+        let q = |j: usize| lerp(a[j], b[j], u);
+        let mut pos = self.base.pos;
+        let mut theta = self.base.theta + q(0);
+        for k in 1..=link {
+            pos += self.lengths[k - 1] * Vec2::new(theta.cos(), theta.sin());
+            theta += q(k);
+        }
+        Pose { pos, theta }
     }
 
     /// r_{j,k}: a bound of the distance from joint j's axis to every point of link k, for
@@ -429,6 +446,16 @@ pub fn forward_kinematics(base: Pose, lengths: &[f64], q: &[f64], link: usize) -
         theta += q[k];
     }
     Pose { pos, theta }
+}
+
+/// `a + (b − a)·u`, exactly `a` at u = 0 (the angles of a sample as given).
+#[inline]
+fn lerp(a: f64, b: f64, u: f64) -> f64 {
+    if u == 0.0 {
+        a
+    } else {
+        a + (b - a) * u
+    }
 }
 
 /// The joint rates derived from the angles at sample `k`: the segment after it, or the one
