@@ -72,36 +72,49 @@ pub(super) struct Span<'s> {
     pub links: Option<Box<[Option<LinkEnds<'s>>; 2]>>,
 }
 
-/// A link's joint angles at both ends of a merged interval, and its motion bound over it.
+/// A link over a merged interval: the arm's two samples about it (the joints are linear
+/// between them), where the interval's ends lie between those samples, and its motion bound
+/// over the interval. Nothing is allocated: a pose is the kinematics of interpolated angles.
 pub(super) struct LinkEnds<'s> {
     pub motion: &'s LinkMotion,
-    pub q0: Vec<f64>,
-    pub q1: Vec<f64>,
+    a: &'s [f64],
+    b: &'s [f64],
+    /// The interval's ends as parameters between `a` (0) and `b` (1).
+    s0: f64,
+    s1: f64,
     /// λ of the link over the whole interval (Schwarzer, Saha & Latombe 2005).
     pub lambda: f64,
 }
 
 impl<'s> LinkEnds<'s> {
     pub fn new(motion: &'s LinkMotion, t0: f64, t1: f64) -> Self {
-        let (q0, q1) = (motion.arm.q_at(t0), motion.arm.q_at(t1));
-        let lambda = motion.arm.lambda(motion.link, &q0, &q1);
+        // A merged interval lies within one segment of the arm's samples: the one about
+        // its middle.
+        let (a, b, ta, tb) = motion.arm.samples_about(0.5 * (t0 + t1));
+        let (s0, s1) = if tb > ta {
+            ((t0 - ta) / (tb - ta), (t1 - ta) / (tb - ta))
+        } else {
+            (0.0, 0.0) // at rest outside the samples
+        };
+        let turn = |j: usize| (b[j] - a[j]).abs() * (s1 - s0).abs();
+        let link = motion.link;
+        let lambda = (0..=link)
+            .map(|j| turn(j) * motion.arm.lever(j, link))
+            .sum();
         LinkEnds {
             motion,
-            q0,
-            q1,
+            a,
+            b,
+            s0,
+            s1,
             lambda,
         }
     }
 
     /// The link's pose at `u`: its joints interpolated, then forward kinematics.
     fn pose(&self, u: f64) -> Pose {
-        let q: Vec<f64> = self
-            .q0
-            .iter()
-            .zip(&self.q1)
-            .map(|(a, b)| a + (b - a) * u)
-            .collect();
-        self.motion.arm.link_pose(&q, self.motion.link)
+        let s = self.s0 + (self.s1 - self.s0) * u;
+        (self.motion.arm).pose_between(self.a, self.b, s, self.motion.link)
     }
 }
 

@@ -212,6 +212,18 @@ impl ArmMotion {
         (0..self.links()).map(|j| lerp(a[j], b[j], u)).collect()
     }
 
+    /// The samples' angles about `t` and their times: `(a, b, ta, tb)`, the same sample
+    /// twice (ta = tb) outside the samples.
+    pub(crate) fn samples_about(&self, t: f64) -> (&[f64], &[f64], f64, f64) {
+        let s = &self.samples;
+        let k = s.partition_point(|x| x.t <= t);
+        if k == 0 || k == s.len() {
+            let at = &s[k.saturating_sub(1)];
+            return (&at.q, &at.q, at.t, at.t);
+        }
+        (&s[k - 1].q, &s[k].q, s[k - 1].t, s[k].t)
+    }
+
     /// The samples' angles about `t` and where `t` lies between them: `q(t)` is
     /// `a + (b − a)·u` per joint (the same sample twice, u = 0, outside the samples).
     fn segment(&self, t: f64) -> (&[f64], &[f64], f64) {
