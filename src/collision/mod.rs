@@ -10,6 +10,7 @@
 
 mod adaptive;
 mod advance;
+mod arm;
 mod broad_phase;
 mod check;
 mod eta;
@@ -25,6 +26,7 @@ mod span;
 mod stats;
 mod verdict;
 
+pub use arm::Arm;
 pub use broad_phase::candidate_pairs;
 pub use check::{
     check, try_check, validate, BudgetExhausted, CheckOptions, CheckReport, Contact, PairStats,
