@@ -322,45 +322,19 @@ impl RefBody<'_> {
     }
 }
 
-/// Conservative advancement of one pair (as in `parts_checker`): the first time closer than δ
-/// with the end of the prefix proven before it; `Err` for a graze it cannot decide.
+/// Conservative advancement of one pair (the reference of `parts_checker` too).
 fn first_contact(
     a: RefBody,
     b: RefBody,
-    (h0, h1): (f64, f64),
+    horizon: (f64, f64),
     min_step: f64,
 ) -> Result<Option<(f64, f64)>, ()> {
-    let mut t = h0;
-    let mut unproven_from: Option<f64> = None;
-    loop {
-        let d = exact_distance(&a.world(t), &b.world(t));
-        if d < DELTA {
-            return Ok(Some((unproven_from.unwrap_or(t), t)));
-        }
+    let distance = |t: f64| exact_distance(&a.world(t), &b.world(t));
+    let speed = |t: f64| {
         let ((va, ea), (vb, eb)) = (a.speed_bound(t), b.speed_bound(t));
-        let segment_end = ea.min(eb).min(h1);
-        let step = if va + vb > 0.0 {
-            (d - DELTA) / (va + vb)
-        } else {
-            f64::INFINITY
-        };
-        if step >= min_step || t >= h1 {
-            if unproven_from.is_some() {
-                return Err(());
-            }
-            if t >= h1 {
-                return Ok(None);
-            }
-            t = if step >= segment_end - t {
-                segment_end
-            } else {
-                t + step
-            };
-            continue;
-        }
-        unproven_from.get_or_insert(t);
-        t = (t + min_step).min(h1);
-    }
+        (va + vb, ea.min(eb))
+    };
+    crate::common::advance_to_contact(distance, speed, horizon, DELTA, min_step)
 }
 
 /// Every pair the scene checks, in its order: robots against robots (never two links of one

@@ -351,48 +351,16 @@ impl Reference {
         (travel / (q[0] - p[0]), q[0])
     }
 
-    /// Conservative advancement of one pair: the first time it comes closer than δ, with
-    /// the end of the prefix proven δ apart before it; or `None` when it never does.
-    ///
-    /// A step is (d − δ) over the speed bound of both bodies until the next sample. Near a
-    /// contact such steps shrink without end: under `min_step` the advance goes on by
-    /// `min_step`, unproven, until δ is crossed (the contact lies in between). `Err` when
-    /// the pair then moves away again: a graze too close to δ for the reference to decide.
+    /// Conservative advancement of one pair ([`crate::common::advance_to_contact`]): the
+    /// first time it comes closer than δ, with the end of the prefix proven before it.
     fn first_contact(&self, pair: (usize, usize), min_step: f64) -> Result<Option<(f64, f64)>, ()> {
-        let (h0, h1) = self.horizon();
-        let mut t = h0;
-        // Where unproven steps began.
-        let mut unproven_from: Option<f64> = None;
-        loop {
-            let d = self.distance(pair, t);
-            if d < self.delta {
-                return Ok(Some((unproven_from.unwrap_or(t), t)));
-            }
+        let speed = |t: f64| {
             let ((va, ea), (vb, eb)) = (self.speed_bound(pair.0, t), self.speed_bound(pair.1, t));
             // Until the next sample of either, the points move no faster than va + vb.
-            let segment_end = ea.min(eb).min(h1);
-            let step = if va + vb > 0.0 {
-                (d - self.delta) / (va + vb)
-            } else {
-                f64::INFINITY
-            };
-            if step >= min_step || t >= h1 {
-                if unproven_from.is_some() {
-                    return Err(());
-                }
-                if t >= h1 {
-                    return Ok(None);
-                }
-                t = if step >= segment_end - t {
-                    segment_end
-                } else {
-                    t + step
-                };
-                continue;
-            }
-            unproven_from.get_or_insert(t);
-            t = (t + min_step).min(h1);
-        }
+            (va + vb, ea.min(eb))
+        };
+        let distance = |t: f64| self.distance(pair, t);
+        crate::common::advance_to_contact(distance, speed, self.horizon(), self.delta, min_step)
     }
 }
 

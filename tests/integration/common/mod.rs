@@ -451,3 +451,53 @@ pub fn temp_dir_absent(module: &str, test: &str) -> std::path::PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }
+
+/// Conservative advancement of one pair, the reference of the property tests: the first time
+/// `distance` drops below `delta` over `(h0, h1)`, with the end of the prefix proven δ apart
+/// before it; or `None` when it never does. `speed(t)` bounds how fast the pair's gap can
+/// close from `t` until the time it also gives (the next sample of either body).
+///
+/// A step is (d − δ) over that speed. Near a contact such steps shrink without end: under
+/// `min_step` the advance goes on by `min_step`, unproven, until δ is crossed (the contact
+/// lies in between). `Err` when the pair then moves away again: a graze too close to δ for
+/// the reference to decide.
+pub fn advance_to_contact(
+    distance: impl Fn(f64) -> f64,
+    speed: impl Fn(f64) -> (f64, f64),
+    (h0, h1): (f64, f64),
+    delta: f64,
+    min_step: f64,
+) -> Result<Option<(f64, f64)>, ()> {
+    let mut t = h0;
+    // Where unproven steps began.
+    let mut unproven_from: Option<f64> = None;
+    loop {
+        let d = distance(t);
+        if d < delta {
+            return Ok(Some((unproven_from.unwrap_or(t), t)));
+        }
+        let (v, until) = speed(t);
+        let segment_end = until.min(h1);
+        let step = if v > 0.0 {
+            (d - delta) / v
+        } else {
+            f64::INFINITY
+        };
+        if step >= min_step || t >= h1 {
+            if unproven_from.is_some() {
+                return Err(());
+            }
+            if t >= h1 {
+                return Ok(None);
+            }
+            t = if step >= segment_end - t {
+                segment_end
+            } else {
+                t + step
+            };
+            continue;
+        }
+        unproven_from.get_or_insert(t);
+        t = (t + min_step).min(h1);
+    }
+}

@@ -183,3 +183,48 @@ pub(super) fn earliest<T>(tried: impl Iterator<Item = (f64, T)>) -> Option<T> {
         })
         .map(|(_, candidate)| candidate)
 }
+
+/// A cell read from `text` with every robot's schedule on `routes` (default legs), and the
+/// context and view a remedy works with: for the remedies' unit tests.
+#[cfg(test)]
+pub(super) struct TestCell {
+    pub cell: Cell,
+    opts: SolveOptions,
+    pub moves: MoveStore,
+    routes: Vec<Vec<usize>>,
+    legs: Legs,
+    robots: Vec<Arc<RobotSchedule>>,
+}
+
+#[cfg(test)]
+impl TestCell {
+    pub fn new(text: &str, routes: Vec<Vec<usize>>) -> TestCell {
+        let cell = crate::cell::parse_cell(text, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let moves = MoveStore::new(&cell, &crate::planning::PlannerOptions::default());
+        let legs = crate::wcp::legs::default_legs(cell.robots.len());
+        let schedule = crate::wcp::schedule::Schedule::build(&cell, &routes, &legs, &moves);
+        let robots = schedule.unwrap().robots;
+        TestCell {
+            cell,
+            opts: SolveOptions::default(),
+            moves,
+            routes,
+            legs,
+            robots,
+        }
+    }
+
+    pub fn ctx(&self) -> Ctx<'_> {
+        Ctx::new(&self.cell, &self.moves, &self.opts)
+    }
+
+    pub fn view(&self) -> View<'_> {
+        View {
+            routes: &self.routes,
+            legs: &self.legs,
+            robots: &self.robots,
+        }
+    }
+}

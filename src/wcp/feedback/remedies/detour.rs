@@ -132,13 +132,8 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::context::TestCell;
     use super::*;
-    use crate::cell::parse_cell;
-    use crate::planning::PlannerOptions;
-    use crate::wcp::legs::default_legs;
-    use crate::wcp::moves::MoveStore;
-    use crate::wcp::options::SolveOptions;
-    use crate::wcp::schedule::Schedule;
 
     /// The region a robot of parts occupies is its parts', not its hull's: between the two
     /// feet of a gantry another robot may pass.
@@ -151,18 +146,9 @@ mod tests {
                                          [[-0.2, -1.0], [0.2, -1.0], [0.2, -0.6], [-0.2, -0.6]]],
              "home": [3, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}],
             "tasks": [{"name": "t", "at": [6, 0], "duration": 1, "robots": ["X"]}]}"#;
-        let cell = parse_cell(text, "gantry.json".as_ref()).unwrap().cell;
-        let opts = SolveOptions::default();
-        let moves = MoveStore::new(&cell, &PlannerOptions::default());
-        let (routes, legs) = (vec![vec![0], vec![]], default_legs(2));
-        let schedule = Schedule::build(&cell, &routes, &legs, &moves).unwrap();
-        let ctx = Ctx::new(&cell, &moves, &opts);
-        let view = View {
-            routes: &routes,
-            legs: &legs,
-            robots: &schedule.robots,
-        };
-        let region = occupancy(&ctx, &view, 1, 0.0, 1.0);
+        let test = TestCell::new(text, vec![vec![0], vec![]]);
+        let (cell, moves) = (&test.cell, &test.moves);
+        let region = occupancy(&test.ctx(), &test.view(), 1, 0.0, 1.0);
         assert_eq!(region.len(), 2);
         let between = Vec2::new(3.0, 0.0);
         let inside = |p: &ConvexPolygon| {
@@ -170,7 +156,7 @@ mod tests {
         };
         assert!(!region.iter().any(inside));
         // Through the gantry's feet, the detour is the straight move.
-        let (a, b) = (node_pose(&cell, 0, 0), node_pose(&cell, 0, 1));
+        let (a, b) = (node_pose(cell, 0, 0), node_pose(cell, 0, 1));
         let motion = moves.between(0, a, b, &region).expect("a way through");
         assert_eq!(motion.path, [a.pos, b.pos]);
     }

@@ -155,13 +155,8 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::context::TestCell;
     use super::*;
-    use crate::cell::parse_cell;
-    use crate::planning::PlannerOptions;
-    use crate::wcp::legs::default_legs;
-    use crate::wcp::moves::MoveStore;
-    use crate::wcp::options::SolveOptions;
-    use crate::wcp::schedule::Schedule;
 
     /// A gripper may park with a post between its fingers, where its hull would not fit.
     #[test]
@@ -183,19 +178,10 @@ mod tests {
             a = x - 0.15,
             b = x + 0.15,
         );
-        let cell = parse_cell(&text, "park.json".as_ref()).unwrap().cell;
-        let opts = SolveOptions::default();
-        let moves = MoveStore::new(&cell, &PlannerOptions::default());
-        let (routes, legs) = (vec![vec![], vec![]], default_legs(2));
-        let schedule = Schedule::build(&cell, &routes, &legs, &moves).unwrap();
-        let ctx = Ctx::new(&cell, &moves, &opts);
-        let view = View {
-            routes: &routes,
-            legs: &legs,
-            robots: &schedule.robots,
-        };
+        let test = TestCell::new(&text, vec![vec![], vec![]]);
+        let cell = &test.cell;
         let home = cell.robots[0].home;
-        let poses = parking_poses(&ctx, &view, 0, 1, home, (0.0, 1.0));
+        let poses = parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0));
         let east = poses
             .iter()
             .find(|p| (p.pos - Vec2::new(2.0 * radius, 0.0)).norm() < 1e-9)
