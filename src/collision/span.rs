@@ -96,11 +96,8 @@ impl<'s> LinkEnds<'s> {
         } else {
             (0.0, 0.0) // at rest outside the samples
         };
-        let turn = |j: usize| (b[j] - a[j]).abs() * (s1 - s0).abs();
-        let link = motion.link;
-        let lambda = (0..=link)
-            .map(|j| turn(j) * motion.arm.lever(j, link))
-            .sum();
+        // The joints turn by (b − a)·(s1 − s0) over the interval.
+        let lambda = motion.arm.lambda(motion.link, a, b) * (s1 - s0).abs();
         LinkEnds {
             motion,
             a,

@@ -197,6 +197,18 @@ fn cells_take_parts_and_outlines_and_keep_the_hull_as_shape() {
         (Some("t"), "tasks[0].at")
     );
     assert!(e.reason.contains("inside obstacle \"U\""), "{e}");
+    // A home inside the bay's hull, clear of its walls, is taken; one on a wall is not.
+    let homed = |home: Value| {
+        let mut doc: Value = serde_json::from_str(&cell(json!({"name": "R",
+            "shape": [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]],
+            "home": home, "max_speed": 1, "max_accel": 1, "max_turn_rate": 1})))
+        .unwrap();
+        doc["tasks"][0]["at"] = json!([0, 0]);
+        parse_cell(&doc.to_string(), Path::new("c.json"))
+    };
+    assert!(homed(json!([2.4, 0])).is_ok());
+    let e = homed(json!([2.9, 0])).unwrap_err();
+    assert_eq!(e.field, "robots[0].home", "{e}");
     // A convex outline is one convex shape: no parts kept.
     let square = json!({"name": "R", "outline": [[0, 0], [0.2, 0], [0.2, 0.2], [0, 0.2]],
                         "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1});
