@@ -150,14 +150,26 @@ pub fn kind_colour(kind: &str) -> &'static str {
 }
 
 fn robots_of(scene: &Scene) -> Vec<RobotView> {
+    // One colour per robot: the links of an arm share theirs.
+    let mut robot = 0;
+    let colours: Vec<&'static str> = (scene.bodies.iter().enumerate())
+        .filter(|(_, b)| b.is_robot())
+        .map(|(k, b)| {
+            if k > 0 && scene.bodies[k - 1].same_arm(b) {
+                robot -= 1;
+            }
+            robot += 1;
+            COLOURS[(robot - 1) % COLOURS.len()]
+        })
+        .collect();
     scene
         .bodies
         .iter()
         .filter(|b| b.is_robot())
-        .enumerate()
-        .map(|(r, b)| RobotView {
+        .zip(colours)
+        .map(|(b, colour)| RobotView {
             name: b.name.clone(),
-            colour: COLOURS[r % COLOURS.len()],
+            colour,
             shape: match b.parts.as_ref().and_then(|p| p.outline()) {
                 Some(outline) => points(outline),
                 None => points(b.shape.vertices()),

@@ -140,7 +140,7 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
         0
     } else {
         // Robots, symbols (which may wrap once) and the note of labels left out.
-        m.robots.len().div_ceil(LEGEND_PER_ROW) + 3
+        legend_robots(m).len().div_ceil(LEGEND_PER_ROW) + 3
     };
     // Whole pixels: a page lays the picture out on them, and one unit stays one pixel.
     let height = (frame.height + legend_rows as f64 * LEGEND_ROW + 8.0).ceil();
@@ -476,9 +476,20 @@ fn legend_entries(m: &Model, rings: bool) -> Vec<(Symbol, &'static str)> {
     entries
 }
 
+/// The robots the legend names: an arm once, though each of its links is drawn as a body.
+fn legend_robots(m: &Model) -> Vec<&RobotView> {
+    let mut named: Vec<&RobotView> = Vec::new();
+    for robot in &m.robots {
+        if named.last().is_none_or(|last| last.name != robot.name) {
+            named.push(robot);
+        }
+    }
+    named
+}
+
 fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) -> Document {
     let mut y = top + LEGEND_ROW - 4.0;
-    for row in m.robots.chunks(LEGEND_PER_ROW) {
+    for row in legend_robots(m).chunks(LEGEND_PER_ROW) {
         let mut x = MARGIN;
         for robot in row {
             doc = doc
