@@ -46,7 +46,7 @@ impl<'a> Cursor<'a> {
     fn pose(&self, t: f64) -> Pose {
         match self.motion {
             Motion::Sampled(tr) => tr.pose_after(self.after, t),
-            Motion::Link(l) => l.arm.pose_at(t, l.link),
+            Motion::Link(l) => l.arm.pose_after(self.after, t, l.link),
             Motion::Fixed(p) => *p,
         }
     }

@@ -224,6 +224,19 @@ impl ArmMotion {
         (&s[k - 1].q, &s[k].q, s[k - 1].t, s[k].t)
     }
 
+    /// Link `link`'s pose at `t`, given `after`, the number of samples at or before `t` (as
+    /// a walk through the samples knows it): bit for bit [`ArmMotion::pose_at`], without its
+    /// search.
+    pub(crate) fn pose_after(&self, after: usize, t: f64, link: usize) -> Pose {
+        let s = &self.samples;
+        if after == 0 || after == s.len() {
+            let at = &s[after.saturating_sub(1)].q;
+            return self.pose_between(at, at, 0.0, link);
+        }
+        let (a, b) = (&s[after - 1], &s[after]);
+        self.pose_between(&a.q, &b.q, (t - a.t) / (b.t - a.t), link)
+    }
+
     /// The samples' angles about `t` and where `t` lies between them: `q(t)` is
     /// `a + (b − a)·u` per joint (the same sample twice, u = 0, outside the samples).
     fn segment(&self, t: f64) -> (&[f64], &[f64], f64) {
@@ -575,6 +588,39 @@ mod tests {
             let u = i as f64 / 1000.0;
             let q: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| a + (b - a) * u).collect();
             assert!((tip(&q) - start).norm() <= lam * u + 1e-12);
+        }
+    }
+
+    /// The walk's pose (by sample count) is the searched one, bit for bit, at and between
+    /// samples and outside them.
+    #[test]
+    fn pose_after_is_pose_at() {
+        let s = |t: f64, q: Vec<f64>| JointSample {
+            t,
+            q,
+            qd: Vec::new(),
+        };
+        let samples = vec![
+            s(0.5, vec![0.1, 2.0]),
+            s(1.0, vec![7.0, -1.0]),
+            s(3.0, vec![-2.0, 0.3]),
+        ];
+        let arm = ArmMotion::new(
+            Pose::new(1.0, 2.0, 0.3),
+            vec![0.7, 0.4],
+            vec![0.8, 0.5],
+            samples,
+        )
+        .unwrap();
+        for t in [0.0, 0.5, 0.7, 1.0, 1.3, 2.999, 3.0, 9.0] {
+            let after = arm.samples().partition_point(|x| x.t <= t);
+            for link in 0..2 {
+                assert_eq!(
+                    arm.pose_after(after, t, link),
+                    arm.pose_at(t, link),
+                    "t = {t}"
+                );
+            }
         }
     }
 
