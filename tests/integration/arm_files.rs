@@ -143,3 +143,28 @@ fn arms_are_read_checked_and_written_back() {
         .scene;
     assert_eq!(check(&again, &CheckOptions::default()), report);
 }
+
+/// Fields are named by the file's robots, an arm counting once: a rigid robot after a
+/// two-link arm is `robots[1]`, the arm's second link `robots[0].links[1]`.
+#[test]
+fn fields_count_an_arm_once() {
+    let mut doc: Value = serde_json::from_str(&scene(|_| {})).unwrap();
+    doc["robots"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"name": "R",
+        "shape": [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]],
+        "trajectory": [{"t": 0, "x": 3, "y": 0}, {"t": 1, "x": 1e12, "y": 0}]}));
+    let loaded = parse_scene(&doc.to_string(), Path::new("arm.json"))
+        .unwrap()
+        .scene;
+    assert_eq!(loaded.field_of(1), "robots[0].links[1]");
+    assert_eq!(loaded.field_of(2), "robots[1]");
+    assert_eq!(loaded.field_of(3), "obstacles[0]");
+    let e =
+        workcell::cell::check_precision(&loaded, loaded.delta, Path::new("arm.json")).unwrap_err();
+    assert_eq!(
+        (e.body.as_deref(), e.field.as_str()),
+        (Some("R"), "robots[1].trajectory[1].x")
+    );
+}
