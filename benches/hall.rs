@@ -5,7 +5,8 @@
 //! and once the earliest is known the other pairs stop there, so its check covers the
 //! horizon only up to that contact. `hall-free-N` is the same hall with the robot of each first contact removed
 //! until none is left: there every candidate pair is checked over the whole horizon. The
-//! scenes' pair counts and verdicts are printed once, before measuring.
+//! scenes' pair counts and verdicts are printed once, before measuring. `arm-hall-N` and
+//! `arm-hall-free-N` are the same for N arms and N rigid robots (`Kind::ArmHall`).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::{ThreadPool, ThreadPoolBuilder};
@@ -73,6 +74,13 @@ fn halls(c: &mut Criterion) {
                 (format!("hall-{n}"), hall),
             ]
         })
+        .chain([100, 1000].into_iter().flat_map(|n| {
+            let hall = generate_scene(Kind::ArmHall, SEED, 0, n);
+            [
+                (format!("arm-hall-free-{n}"), thinned(hall.clone())),
+                (format!("arm-hall-{n}"), hall),
+            ]
+        }))
         .collect();
     for (name, scene) in &scenes {
         describe(name, scene);

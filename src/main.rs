@@ -215,7 +215,7 @@ fn generate(
     if let Some(kinds) = conflicts {
         if robots.is_some() {
             return Err(refuse(&format!(
-                "--robots applies only to --kind hall and cell, not to {kind}"
+                "--robots applies only to --kind hall, arm-hall and cell, not to {kind}"
             )));
         }
         return run_generate(&What::Conflicts(&kinds), seed, count.unwrap_or(10), out);

@@ -411,6 +411,7 @@ fn arm(
                 format!("{at}.trajectory[{sample}].{field}")
             }
             ArmError::NotIncreasing { sample } => format!("{at}.trajectory[{sample}].t"),
+            ArmError::Reach { link } => format!("{at}.links[{link}]"),
         };
         err(field, e.to_string())
     })?;

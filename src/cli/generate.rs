@@ -60,11 +60,11 @@ pub fn run_generate(
     match what {
         What::Scenes { kinds, robots } => {
             if let (Some(_), [kind]) = (robots, kinds) {
-                if *kind != Kind::Hall {
+                if !matches!(kind, Kind::Hall | Kind::ArmHall) {
                     return Err(fail(
                         out,
                         format!(
-                            "--robots applies only to --kind hall and cell, not to {}",
+                            "--robots applies only to --kind hall, arm-hall and cell, not to {}",
                             kind.name()
                         ),
                     ));

@@ -113,7 +113,13 @@ impl Body {
     /// The links of an arm named `name` (contract section 6): one body per link, each given
     /// in its link's frame (origin at its joint, x along the link) as a convex shape or
     /// parts, all moved by `arm`. The links share the arm's name; [`Body::link`] tells them
-    /// apart, and links of one arm are never checked against each other.
+    /// apart, and links of one arm are never checked against each other. Each link's radius
+    /// about its joint is raised to its body's, so that the motion bound covers the body.
+    /// [`super::Arm`] builds the same bodies, checking the counts.
+    ///
+    /// # Panics
+    ///
+    /// When `links` does not hold one body per link of `arm`.
     ///
     /// ```
     /// use workcell::collision::{Body, Scene};
@@ -132,8 +138,11 @@ impl Body {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn arm(name: impl Into<String>, arm: ArmMotion, links: Vec<Parts>) -> Vec<Body> {
+        assert_eq!(links.len(), arm.links(), "one body per link of the arm");
         let name = name.into();
-        let arm = Arc::new(arm);
+        // λ must bound the bodies' own points, whatever radii the arm was given.
+        let radii: Vec<f64> = links.iter().map(|p| p.hull().radius()).collect();
+        let arm = Arc::new(arm.covering(&radii));
         links
             .into_iter()
             .enumerate()

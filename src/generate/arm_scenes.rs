@@ -1,6 +1,7 @@
 //! Scenes with arms (contract section 6): two SCARA arms sharing a table, an arm sweeping
 //! past a fixture just over δ away, joints of several turns that meet a post only between
-//! samples, and an arm against a rigid robot crossing its reach.
+//! samples, an arm against a rigid robot crossing its reach, long links with a fast tip, a
+//! contact in the last 1 % of the horizon, and a hall of arms and rigid robots.
 
 use super::smooth::{time_grid, Smooth, R};
 use crate::collision::Body;
@@ -32,8 +33,14 @@ fn arm(name: &str, base: Pose, links: &[(f64, f64)], samples: Vec<JointSample>) 
 }
 
 /// Smooth joint angles: each joint a sum of two sines about `centre`, of amplitude up to
-/// `swing`, sampled at `n` times over [0, 10].
-fn joint_samples(rng: &mut R, centre: &[f64], swing: f64, n: usize) -> Vec<JointSample> {
+/// `swing`, sampled at `n` times over [0, `horizon`].
+fn joint_samples(
+    rng: &mut R,
+    centre: &[f64],
+    swing: f64,
+    n: usize,
+    horizon: f64,
+) -> Vec<JointSample> {
     let waves: Vec<[(f64, f64, f64); 2]> = centre
         .iter()
         .map(|_| {
@@ -47,7 +54,7 @@ fn joint_samples(rng: &mut R, centre: &[f64], swing: f64, n: usize) -> Vec<Joint
             [wave(), wave()]
         })
         .collect();
-    time_grid(rng, n, 0.0, 10.0)
+    time_grid(rng, n, 0.0, horizon)
         .into_iter()
         .map(|t| JointSample {
             t,
@@ -74,7 +81,7 @@ pub(super) fn arms(rng: &mut R) -> Vec<Body> {
             (rng.random_range(0.4..0.6), 0.06),
         ];
         let swing = rng.random_range(0.8..2.0);
-        let samples = joint_samples(rng, &[0.7 * fold, -1.4 * fold], swing, 100);
+        let samples = joint_samples(rng, &[0.7 * fold, -1.4 * fold], swing, 100, 10.0);
         let base = Pose::new(x, 0.0, facing);
         bodies.extend(arm(&format!("A{}", k + 1), base, &links, samples));
     }
@@ -88,9 +95,29 @@ pub(super) fn arm_sweep(rng: &mut R, delta: f64) -> Vec<Body> {
         (rng.random_range(0.5..0.9), 0.07),
         (rng.random_range(0.3..0.6), 0.05),
     ];
+    let gap = rng.random_range(1.1..1.5) * delta;
+    let span = rng.random_range(0.6..2.5);
+    sweep_past(rng, links, gap, span)
+}
+
+/// Long links whose tip sweeps fast past a box 0.5δ to 2δ beyond the tip's circle: the
+/// bound that certifies the near miss has to follow a point moving tens of units a second.
+pub(super) fn arm_long(rng: &mut R, delta: f64) -> Vec<Body> {
+    let links = [
+        (rng.random_range(3.0..5.0), 0.05),
+        (rng.random_range(1.0..2.0), 0.04),
+    ];
+    let gap = rng.random_range(0.5..2.0) * delta;
+    let span = rng.random_range(2.0..6.0);
+    sweep_past(rng, links, gap, span)
+}
+
+/// An arm of two straight `links` whose base joint turns by 2·`span` over [0, 10] (2 to 12
+/// samples), past a box whose near face is `gap` beyond the farthest corner's circle where
+/// the sweep passes it, mid-way.
+fn sweep_past(rng: &mut R, links: [(f64, f64); 2], gap: f64, span: f64) -> Vec<Body> {
     // Straight: the farthest point is the last link's outer corner.
     let far = Vec2::new(links[0].0 + links[1].0 + links[1].1, links[1].1).norm();
-    let gap = rng.random_range(1.1..1.5) * delta;
     let phi = rng.random_range(0.0..TAU);
     let (dir, side) = (
         Vec2::new(phi.cos(), phi.sin()),
@@ -108,7 +135,6 @@ pub(super) fn arm_sweep(rng: &mut R, delta: f64) -> Vec<Body> {
     // The corner's own angle off the link: the sweep brings it to φ mid-way.
     let corner = (links[1].1).atan2(links[0].0 + links[1].0 + links[1].1);
     let mid = phi - corner;
-    let span = rng.random_range(0.6..2.5);
     let n = rng.random_range(2..=12usize);
     let samples = time_grid(rng, n, 0.0, 10.0)
         .into_iter()
@@ -121,6 +147,63 @@ pub(super) fn arm_sweep(rng: &mut R, delta: f64) -> Vec<Body> {
     let mut bodies = arm("A1", Pose::new(0.0, 0.0, 0.0), &links, samples);
     bodies.push(Body::obstacle("F1", &fixture));
     bodies
+}
+
+/// A straight 2-link arm turning its base joint at a constant rate over [0, 10] towards a
+/// post beside link 0: the post's corner nearest the arm lies at radius ρ on a ray at angle β,
+/// the post itself beyond that ray. Link 0's leading edge (half-width h) is then
+/// ρ·sin(β − α) − h from the corner while the arm points at α < β, so it comes within δ
+/// exactly when α reaches β − asin((h + δ)/ρ): placed at a time in the last 1 % of the
+/// horizon, or 1.1δ to 1.5δ beyond the arm's last angle.
+pub(super) fn arm_late(rng: &mut R, delta: f64) -> Vec<Body> {
+    let (l0, h) = (rng.random_range(0.8..1.2), 0.06);
+    let links = [(l0, h), (rng.random_range(0.3..0.6), 0.05)];
+    let (alpha0, turn) = (rng.random_range(0.0..TAU), rng.random_range(0.5..2.0));
+    let alpha = |t: f64| alpha0 + turn * t / 10.0;
+    let rho = rng.random_range(0.3..0.5) * l0;
+    let beta = if rng.random_bool(0.5) {
+        let t = 10.0 * (1.0 - rng.random_range(0.001..0.01));
+        alpha(t) + ((h + delta) / rho).asin()
+    } else {
+        alpha(10.0) + ((h + rng.random_range(1.1..1.5) * delta) / rho).asin()
+    };
+    let (ray, across) = (
+        Vec2::new(beta.cos(), beta.sin()),
+        Vec2::new(-beta.sin(), beta.cos()),
+    );
+    // The post: ρ to ρ + 0.2 along the ray, 0.15 across it, away from the arm.
+    let corners = [
+        rho * ray,
+        (rho + 0.2) * ray,
+        (rho + 0.2) * ray + 0.15 * across,
+        rho * ray + 0.15 * across,
+    ];
+    let points: Vec<[f64; 2]> = corners.iter().map(|p| [p.x, p.y]).collect();
+    let post = ConvexPolygon::from_vertices(&points).expect("a box");
+    let n = rng.random_range(2..=10usize);
+    let samples = time_grid(rng, n, 0.0, 10.0)
+        .into_iter()
+        .map(|t| JointSample {
+            t,
+            q: vec![alpha(t), 0.0],
+            qd: Vec::new(),
+        })
+        .collect();
+    let mut bodies = arm("A1", Pose::new(0.0, 0.0, 0.0), &links, samples);
+    bodies.push(Body::obstacle("post", &post));
+    bodies
+}
+
+/// A 2-link arm of an [`super::Kind::ArmHall`] based at `centre`, free to turn: it reaches at
+/// most 1.3, within its cell.
+pub(super) fn cell_arm(rng: &mut R, name: &str, centre: Vec2) -> Vec<Body> {
+    let links = [
+        (rng.random_range(0.55..0.7), 0.07),
+        (rng.random_range(0.4..0.5), 0.05),
+    ];
+    let start = [rng.random_range(-PI..PI), rng.random_range(-2.5..2.5)];
+    let samples = joint_samples(rng, &start, 3.0, 100, 20.0);
+    arm(name, Pose::new(centre.x, centre.y, 0.0), &links, samples)
 }
 
 /// A 2-link arm whose base joint turns 2 to 4 times between each pair of its few samples, past a
@@ -158,7 +241,7 @@ pub(super) fn arm_robot(rng: &mut R) -> Vec<Body> {
         (rng.random_range(0.4..0.6), 0.06),
     ];
     let swing = rng.random_range(1.0..2.5);
-    let samples = joint_samples(rng, &[0.0, 0.0], swing, 60);
+    let samples = joint_samples(rng, &[0.0, 0.0], swing, 60, 10.0);
     let mut bodies = arm("A1", Pose::new(0.0, 0.0, 0.0), &links, samples);
     let reach = links[0].0 + links[1].0;
     let (r, dir) = (

@@ -64,11 +64,22 @@ pub enum Kind {
     ArmSpin,
     /// An arm and a rigid robot wandering across its reach; about half collide. δ = 0.01.
     ArmRobot,
+    /// An arm of long links (3 to 5, then 1 to 2) whose base joint turns fast past a post
+    /// 0.5δ to 2δ beyond the tip's circle: the tip moves tens of units per second. Collides
+    /// when the gap is under δ. δ = 0.01.
+    ArmLong,
+    /// An arm turning at constant rate towards a post that it reaches within the last 1 % of
+    /// the horizon (half the scenes), or stops 1.1δ to 1.5δ short of (the others). δ = 0.01.
+    ArmLate,
+    /// N 2-link arms and N rigid robots, each in its own cell of a hall like [`Kind::Hall`]'s
+    /// (the arms reach 1.05 to 1.3 from a base at the cell's centre, turning freely); N/4
+    /// obstacles in spare cells. Contacts come from the rigid robots' crossing lanes. δ = 0.01.
+    ArmHall,
 }
 
 impl Kind {
     /// Every kind, in documentation order.
-    pub const ALL: [Kind; 16] = [
+    pub const ALL: [Kind; 19] = [
         Kind::Pairs,
         Kind::Tunnelling,
         Kind::NearMiss,
@@ -85,10 +96,21 @@ impl Kind {
         Kind::ArmSweep,
         Kind::ArmSpin,
         Kind::ArmRobot,
+        Kind::ArmLong,
+        Kind::ArmLate,
+        Kind::ArmHall,
     ];
 
     /// The kinds with arms (contract section 6).
-    pub const ARMS: [Kind; 4] = [Kind::Arms, Kind::ArmSweep, Kind::ArmSpin, Kind::ArmRobot];
+    pub const ARMS: [Kind; 7] = [
+        Kind::Arms,
+        Kind::ArmSweep,
+        Kind::ArmSpin,
+        Kind::ArmRobot,
+        Kind::ArmLong,
+        Kind::ArmLate,
+        Kind::ArmHall,
+    ];
 
     /// The kinds whose bodies are not convex (contract section 5).
     pub const PARTS: [Kind; 5] = [
@@ -118,6 +140,9 @@ impl Kind {
             Kind::ArmSweep => "arm-sweep",
             Kind::ArmSpin => "arm-spin",
             Kind::ArmRobot => "arm-robot",
+            Kind::ArmLong => "arm-long",
+            Kind::ArmLate => "arm-late",
+            Kind::ArmHall => "arm-hall",
         }
     }
 
@@ -190,6 +215,9 @@ pub fn generate_scene(kind: Kind, seed: u64, index: u64, robots: usize) -> Scene
         Kind::ArmSweep => arm_scenes::arm_sweep(rng, kind.delta()),
         Kind::ArmSpin => arm_scenes::arm_spin(rng),
         Kind::ArmRobot => arm_scenes::arm_robot(rng),
+        Kind::ArmLong => arm_scenes::arm_long(rng, kind.delta()),
+        Kind::ArmLate => arm_scenes::arm_late(rng, kind.delta()),
+        Kind::ArmHall => arm_hall(rng, robots.max(1)),
     };
     Scene {
         delta: kind.delta(),
@@ -472,6 +500,28 @@ fn hall(rng: &mut R, n: usize) -> Vec<Body> {
             .map(|p| [p[0] * shrink + c.x, p[1] * shrink + c.y])
             .collect();
         bodies.push(Body::obstacle(format!("O{}", i + 1), &polygon(&world)));
+    }
+    bodies
+}
+
+/// [`hall`] of 2n robots whose first n become 2-link arms based at their cells' centres
+/// (where each robot starts), free to turn: their reach stays inside their cell, so only
+/// the crossing lanes of the rigid robots meet them. The rigid robots are renamed R1 to Rn.
+fn arm_hall(rng: &mut R, n: usize) -> Vec<Body> {
+    let hall = hall(rng, 2 * n);
+    let mut bodies = Vec::with_capacity(hall.len() + n);
+    for (i, mut body) in hall.into_iter().enumerate() {
+        match (body.is_robot(), i < n) {
+            (true, true) => {
+                let centre = body.motion.pose_at(0.0).pos;
+                bodies.extend(arm_scenes::cell_arm(rng, &format!("A{}", i + 1), centre));
+            }
+            (true, false) => {
+                body.name = format!("R{}", i - n + 1);
+                bodies.push(body);
+            }
+            (false, _) => bodies.push(body),
+        }
     }
     bodies
 }

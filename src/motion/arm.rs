@@ -60,6 +60,11 @@ pub enum ArmError {
         /// The sample whose time is not after the previous one's.
         sample: usize,
     },
+    /// A link's radius about its joint missing, negative or not finite.
+    Reach {
+        /// The link.
+        link: usize,
+    },
 }
 
 impl fmt::Display for ArmError {
@@ -84,6 +89,10 @@ impl fmt::Display for ArmError {
             ArmError::NotIncreasing { .. } => {
                 write!(f, "sample times must strictly increase")
             }
+            ArmError::Reach { .. } => write!(
+                f,
+                "each link needs the radius of its body about its joint, a finite number >= 0"
+            ),
         }
     }
 }
@@ -134,6 +143,11 @@ impl ArmMotion {
                 length: lengths[link],
             });
         }
+        if let Some(link) =
+            (0..links).find(|&k| !reach.get(k).is_some_and(|r| *r >= 0.0 && r.is_finite()))
+        {
+            return Err(ArmError::Reach { link });
+        }
         if samples.is_empty() {
             return Err(ArmError::Empty);
         }
@@ -173,6 +187,16 @@ impl ArmMotion {
             samples,
             reach,
         })
+    }
+
+    /// The arm with each link's radius about its joint raised to at least `radii[k]`: the
+    /// bodies the checker moves decide how far their points lie from the joints, whatever
+    /// radius the arm was given.
+    pub(crate) fn covering(mut self, radii: &[f64]) -> ArmMotion {
+        for (r, &body) in self.reach.iter_mut().zip(radii) {
+            *r = r.max(body);
+        }
+        self
     }
 
     /// The base pose.

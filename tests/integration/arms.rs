@@ -461,7 +461,8 @@ fn arm_scenes_are_mixed() {
 
 /// Every generated arm kind agrees with the reference: the free sweeps 1.1δ to 1.5δ past a
 /// fixture, the spins that meet a post only between samples, two arms on a table, an arm and
-/// a rigid robot.
+/// a rigid robot, long links with a fast tip, contacts in the last 1 % of the horizon, halls
+/// of arms and rigid robots.
 #[test]
 fn generated_arm_kinds_agree_with_the_reference() {
     use workcell::generate::{generate_scene, Kind};
@@ -469,7 +470,8 @@ fn generated_arm_kinds_agree_with_the_reference() {
         let (mut hit, mut free) = (0, 0);
         for seed in 1..=2 {
             for k in 0..8 {
-                let scene = generate_scene(kind, seed, k, 0);
+                // Halls of 4 arms and 4 rigid robots.
+                let scene = generate_scene(kind, seed, k, 4);
                 let spec = SceneSpec::of_scene(&scene);
                 match agrees_on(&scene, &spec) {
                     Ok(Some(true)) => hit += 1,
@@ -489,4 +491,56 @@ fn generated_arm_kinds_agree_with_the_reference() {
             ),
         }
     }
+}
+
+/// The late contacts of `generate --kind arm-late` are found where the geometry puts them:
+/// link 0's leading edge, h from the link's axis, is ρ·sin(β − α) − h from the post's corner
+/// at (ρ, β) while the arm points at α < β, so the first contact is at the time the base
+/// joint reaches β − asin((h + δ)/ρ), when that falls within the horizon. The report is never
+/// before it and at most the time tolerance after it.
+#[test]
+fn late_contacts_come_exactly_where_the_geometry_puts_them() {
+    use workcell::generate::{generate_scene, Kind};
+    use workcell::motion::Motion;
+    let (mut late, mut short) = (0, 0);
+    for k in 0..20 {
+        let scene = generate_scene(Kind::ArmLate, 3, k, 0);
+        let Motion::Link(link) = &scene.bodies[0].motion else {
+            panic!("link 0 first")
+        };
+        let samples = link.arm.samples();
+        let (first, last) = (&samples[0], &samples[samples.len() - 1]);
+        let rate = (last.q[0] - first.q[0]) / (last.t - first.t);
+        let h = (scene.bodies[0].shape.vertices().iter()).fold(0.0f64, |m, v| m.max(v.y.abs()));
+        let post = scene.bodies.iter().find(|b| b.name == "post").unwrap();
+        let corner = (post.shape.vertices().iter())
+            .map(|v| post.motion.pose_at(0.0).pos + v)
+            .min_by(|a, b| a.norm().total_cmp(&b.norm()))
+            .unwrap();
+        let (rho, beta) = (corner.norm(), corner.y.atan2(corner.x));
+        // β is only known up to turns: the one just ahead of the arm's start.
+        let ahead = (beta - first.q[0]).rem_euclid(TAU);
+        let reach = first.q[0] + ahead - ((h + scene.delta) / rho).asin();
+        let t = first.t + (reach - first.q[0]) / rate;
+        let opts = CheckOptions::default();
+        let report = check(&scene, &opts);
+        let tol = opts.time_tol_for(scene.horizon());
+        match report.first_contact {
+            Some(c) => {
+                late += 1;
+                assert!(t > 9.9 && t < 10.0, "scene {k}: contact expected at {t}");
+                let slack = 1e-9;
+                assert!(
+                    c.time >= t - slack && c.time <= t + tol + slack,
+                    "scene {k}: reported at {}, expected {t} (tolerance {tol})",
+                    c.time
+                );
+            }
+            None => {
+                short += 1;
+                assert!(t > last.t, "scene {k}: contact at {t} missed");
+            }
+        }
+    }
+    assert!(late >= 5 && short >= 5, "{late} late, {short} short");
 }

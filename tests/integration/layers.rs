@@ -132,19 +132,58 @@ fn children_dir(file: &Path) -> PathBuf {
     }
 }
 
+/// A test module declared on the first non-blank of `lines` (after its `#[cfg(test)]`).
+enum TestModule {
+    /// `mod tests { … }`: the rest of the file.
+    Inline,
+    /// `mod tests;`: a file of its own, by that name.
+    File(String),
+}
+
+fn test_module(lines: &[&str]) -> Option<TestModule> {
+    let line = lines.iter().find(|l| !l.trim().is_empty())?.trim();
+    let name = line.strip_prefix("mod ")?;
+    Some(match name.strip_suffix(';') {
+        Some(file) => TestModule::File(file.trim().to_owned()),
+        None => TestModule::Inline,
+    })
+}
+
+/// The files of `files` that are test modules (`#[cfg(test)] mod tests;`): not read.
+fn test_module_files(files: &[PathBuf]) -> Vec<PathBuf> {
+    let mut tests = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(file).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        for (k, line) in lines.iter().enumerate() {
+            if line.trim_start().starts_with("#[cfg(test)]") {
+                if let Some(TestModule::File(name)) = test_module(&lines[k + 1..]) {
+                    tests.push(children_dir(file).join(format!("{name}.rs")));
+                }
+            }
+        }
+    }
+    tests
+}
+
 /// The code of a file, line by line, without comments and without its test module.
 fn code_lines(text: &str) -> Vec<(usize, String)> {
     let lines: Vec<&str> = text.lines().collect();
     let mut out = Vec::new();
     for (k, line) in lines.iter().enumerate() {
         let trimmed = line.trim_start();
-        if trimmed.starts_with("#[cfg(test)]")
-            && lines[k + 1..]
-                .iter()
-                .find(|l| !l.trim().is_empty())
-                .is_some_and(|l| l.trim_start().starts_with("mod "))
-        {
-            break;
+        if trimmed.starts_with("#[cfg(test)]") {
+            match test_module(&lines[k + 1..]) {
+                // A test module in a file of its own: the rest of this file is still code.
+                Some(TestModule::File(_)) => continue,
+                Some(TestModule::Inline) => break,
+                None => {}
+            }
+        }
+        if k > 0 && lines[k - 1].trim_start().starts_with("#[cfg(test)]") {
+            if let Some(TestModule::File(_)) = test_module(&lines[k..]) {
+                continue;
+            }
         }
         let code = match line.find("//") {
             Some(i) => &line[..i],
@@ -268,6 +307,8 @@ fn arrows(src: &Path) -> Vec<Arrow> {
         }
     }
     files.sort();
+    let tests = test_module_files(&files);
+    files.retain(|f| !tests.contains(f));
     let mut arrows = Vec::new();
     for file in &files {
         let text = std::fs::read_to_string(file).unwrap();
@@ -507,5 +548,10 @@ fn the_detector_sees_cycles_and_paths() {
             "use a;\n/// crate::b\nx(); // crate::c\n#[cfg(test)]\nmod tests {\nuse crate::d;\n}"
         ),
         [(1, "use a;".to_owned()), (3, "x(); ".to_owned())]
+    );
+    // A test module in a file of its own hides nothing after it.
+    assert_eq!(
+        code_lines("#[cfg(test)]\nmod tests;\nuse crate::e;"),
+        [(3, "use crate::e;".to_owned())]
     );
 }
