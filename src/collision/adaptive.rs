@@ -66,10 +66,18 @@ pub(super) fn search(
     stack: &mut Vec<(Probe, Probe)>,
     stats: &mut Stats,
 ) -> Result<(), Stop> {
-    search_with(eta, span, ends, bound, s, stack, stats, true)
+    search_with(eta, span, ends, bound, s, stack, stats, Grazes::Refine)
 }
 
-/// [`search`], refining the grazes before a contact when `refine`.
+/// What a search does with the grazes it meets.
+enum Grazes<'g> {
+    /// Before a contact, searches them again finer ([`PendingGrazes::refine`]).
+    Refine,
+    /// Hands them over when no contact follows in the interval: a refining search decides.
+    Collect(&'g mut Vec<f64>),
+}
+
+/// [`search`], refining the grazes before a contact or collecting them, as `mode` says.
 ///
 /// One loop over the stack of intervals, read top to bottom as the paper's cases of an
 /// interval (out of work, no geometry, contact, certified, graze, unresolved, bisect): kept
@@ -83,7 +91,7 @@ fn search_with(
     s: &PairSettings,
     stack: &mut Vec<(Probe, Probe)>,
     stats: &mut Stats,
-    refine: bool,
+    mut mode: Grazes,
 ) -> Result<(), Stop> {
     let (a, b) = (eta.a, eta.b);
     let duration = span.t1 - span.t0;
@@ -111,12 +119,15 @@ fn search_with(
             }
             // A contact lies in (l, r]: bisect until the interval is within tolerance.
             if (r.u - l.u) * duration <= s.time_tol || resolved {
-                if refine {
-                    grazes.refine(eta, span, bound, s, stats)?;
-                } else {
-                    grazes.accept(stats);
-                }
-                return Err(Stop::Contact(r, span.time_before(l.u)));
+                let refined = match mode {
+                    Grazes::Refine => grazes.refine(eta, span, bound, s, stats, r.u)?,
+                    // A contact inside a graze being refined: those before it stay grazes.
+                    Grazes::Collect(_) => {
+                        grazes.accept(stats);
+                        None
+                    }
+                };
+                return Err(Stop::Contact(r, refined.unwrap_or(span.time_before(l.u))));
             }
         } else {
             // Schwarzer-Saha-Latombe: for s in [0, 1], d(l + s·h) ≥ max(η(l) − sλ, η(r) − (1 − s)λ)
@@ -126,13 +137,18 @@ fn search_with(
             if first_order >= s.delta {
                 continue;
             }
-            // The paper's method has only the first-order certificate.
-            // It needs rigid motion (a link's pose is not linear in time).
+            // The paper's method has only the first-order certificate. A link's frame does
+            // not move linearly: it is held to the linear motion between its ends, less
+            // how far its origin may stray from the chord.
             let low = match bound {
                 BoundKind::Rigorous if !span.has_links() => {
                     first_order.max(convexity_bound(&l, &r, radii, s.walk.feature_tol))
                 }
-                _ => first_order,
+                BoundKind::Rigorous => {
+                    let linear = convexity_bound(&l, &r, radii, s.walk.feature_tol);
+                    first_order.max(linear - span.chord_error(l.u, r.u))
+                }
+                BoundKind::Paper => first_order,
             };
             if low >= s.delta {
                 stats.convexity_certificates += 1;
@@ -156,46 +172,52 @@ fn search_with(
         stack.push((Probe { u: mid, ..m }, r));
         stack.push((l, Probe { u: mid, ..m }));
     }
-    grazes.accept(stats);
+    match &mut mode {
+        Grazes::Refine => grazes.accept(stats),
+        Grazes::Collect(out) => out.append(&mut grazes.starts),
+    }
     Ok(())
 }
 
 /// The grazes met since the last proof, in time order, not yet accepted.
 #[derive(Default)]
 struct PendingGrazes {
-    /// Where the first of them starts.
-    start: f64,
     intervals: Vec<(Probe, Probe)>,
+    /// Where each starts.
+    starts: Vec<f64>,
 }
 
 impl PendingGrazes {
     /// A graze on `interval`, which starts at time `t`.
     fn add(&mut self, interval: (Probe, Probe), t: f64) {
-        if self.intervals.is_empty() {
-            self.start = t;
-        }
         self.intervals.push(interval);
+        self.starts.push(t);
     }
 
     /// The start of the pending grazes, when a witness at `t` is within `time_tol` of it:
     /// they are then part of the contact, not grazes.
     fn within(&mut self, t: f64, time_tol: f64) -> Option<f64> {
-        if self.intervals.is_empty() || t - self.start > time_tol {
+        let start = *self.starts.first()?;
+        if t - start > time_tol {
             return None;
         }
         self.intervals.clear();
-        Some(self.start)
+        self.starts.clear();
+        Some(start)
     }
 
     /// No contact follows: the pending grazes are accepted.
     fn accept(&mut self, stats: &mut Stats) {
         stats.grazing += self.intervals.len() as u64;
         self.intervals.clear();
+        self.starts.clear();
     }
 
-    /// A contact follows, farther than a time tolerance from the first graze: searches each
-    /// graze again at a finer time tolerance. Its finer grazes are accepted; a witness in
-    /// one of them is an earlier contact.
+    /// A contact follows, its witness at `witness` of the span, farther than a time tolerance from the
+    /// first graze: searches each graze again at a finer time tolerance. A witness in one of
+    /// them is an earlier contact. The finer grazes that start within a time tolerance of
+    /// the witness are part of its contact, as in [`PendingGrazes::within`]: the first of
+    /// them, if any, is returned as the end of the proven prefix; the others are accepted.
     fn refine(
         &mut self,
         eta: &mut Eta,
@@ -203,15 +225,24 @@ impl PendingGrazes {
         bound: BoundKind,
         s: &PairSettings,
         stats: &mut Stats,
-    ) -> Result<(), Stop> {
+        witness: f64,
+    ) -> Result<Option<f64>, Stop> {
+        let witness = span.time_after(witness);
         let fine = PairSettings {
             time_tol: s.time_tol / GRAZE_REFINEMENT,
             ..*s
         };
-        let mut stack = Vec::new();
+        let (mut stack, mut finer) = (Vec::new(), Vec::new());
+        self.starts.clear();
         for interval in std::mem::take(&mut self.intervals) {
-            search_with(eta, span, interval, bound, &fine, &mut stack, stats, false)?;
+            let collect = Grazes::Collect(&mut finer);
+            search_with(
+                eta, span, interval, bound, &fine, &mut stack, stats, collect,
+            )?;
         }
-        Ok(())
+        // `finer` is in time order: the grazes are searched in order, each left first.
+        let near = finer.iter().position(|&g| witness - g <= s.time_tol);
+        stats.grazing += near.unwrap_or(finer.len()) as u64;
+        Ok(near.map(|k| finer[k]))
     }
 }

@@ -44,9 +44,21 @@ impl<'a> Cursor<'a> {
 
     /// The pose at the time last passed: bit for bit [`Motion::pose_at`].
     fn pose(&self, t: f64) -> Pose {
+        self.pose_with(self.after, t)
+    }
+
+    /// The pose at `t`, a time with `after` samples at or before it.
+    fn pose_with(&self, after: usize, t: f64) -> Pose {
         match self.motion {
-            Motion::Sampled(tr) => tr.pose_after(self.after, t),
-            Motion::Link(l) => l.arm.pose_after(self.after, t, l.link),
+            Motion::Sampled(tr) => tr.pose_after(after, t),
+            // At the arm's own sample time the frame is already known (the same bits).
+            Motion::Link(l) => match after.checked_sub(1).map(|k| &self.times[k]) {
+                Some(f) if f.t == t => Pose {
+                    pos: f.pos,
+                    theta: f.theta,
+                },
+                _ => l.arm.pose_after(after, t, l.link),
+            },
             Motion::Fixed(p) => *p,
         }
     }
@@ -74,8 +86,8 @@ impl<'a> MergedGrid<'a> {
         }
     }
 
-    /// The next time, without the poses.
-    fn next_time(&mut self) -> Option<f64> {
+    /// The next time, without the poses ([`MergedGrid::poses`] gives them).
+    pub fn next_time(&mut self) -> Option<f64> {
         let (t0, t1) = self.horizon;
         let t = match self.last {
             None => t0,
@@ -93,6 +105,32 @@ impl<'a> MergedGrid<'a> {
         Some(t)
     }
 
+    /// For each body, the number of its samples at or before the time last yielded: a link's
+    /// segment over the interval that starts there.
+    pub fn afters(&self) -> (usize, usize) {
+        (self.a.after, self.b.after)
+    }
+
+    /// Both poses at `t`, the time last yielded.
+    pub fn poses(&self, t: f64) -> (Pose, Pose) {
+        (self.a.pose(t), self.b.pose(t))
+    }
+
+    /// Both poses at `t`, a time with `afters` samples of each body at or before it (as
+    /// [`MergedGrid::afters`] gave them when `t` was the time last yielded).
+    pub fn poses_with(&self, (after_a, after_b): (usize, usize), t: f64) -> (Pose, Pose) {
+        (self.a.pose_with(after_a, t), self.b.pose_with(after_b, t))
+    }
+
+    /// Body B's pose (A's when `b` is false) at `t`, a time with `after` of its samples at
+    /// or before it.
+    pub fn pose_of(&self, b: bool, after: usize, t: f64) -> Pose {
+        match b {
+            false => self.a.pose_with(after, t),
+            true => self.b.pose_with(after, t),
+        }
+    }
+
     /// The number of times not yielded yet.
     pub fn count_rest(mut self) -> usize {
         std::iter::from_fn(|| self.next_time()).count()
@@ -105,7 +143,7 @@ impl Iterator for MergedGrid<'_> {
 
     fn next(&mut self) -> Option<Self::Item> {
         let t = self.next_time()?;
-        Some((t, (self.a.pose(t), self.b.pose(t))))
+        Some((t, self.poses(t)))
     }
 }
 

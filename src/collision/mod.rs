@@ -20,6 +20,7 @@ mod pair;
 #[cfg(feature = "parry-peer")]
 mod peer;
 mod precision;
+mod run_ahead;
 mod sampled;
 mod scene;
 mod span;

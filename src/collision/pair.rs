@@ -4,6 +4,7 @@
 use super::eta::Eta;
 use super::grid::MergedGrid;
 use super::method::{Method, Scratch};
+use super::run_ahead::RunAhead;
 use super::span::{LinkEnds, PairSettings, Probe, Span, Stop};
 use super::{Body, Stats};
 use crate::motion::Motion;
@@ -108,6 +109,26 @@ fn contact(limit: &SharedLimit, eta: &mut Eta, p: &Probe, interval: usize) -> Op
     })
 }
 
+/// The outcome of a pair whose check stopped in its `interval`-th merged interval.
+fn stopped(limit: &SharedLimit, eta: &mut Eta, stop: Stop, interval: usize) -> PairOutcome {
+    match stop {
+        Stop::Contact(witness, safe_until) => PairOutcome {
+            contact: contact(limit, eta, &witness, interval),
+            safe_until,
+            out_of_work: false,
+        },
+        Stop::OutOfWork(safe_until) => {
+            // Nothing after this can be the scene's first event: no pair need look on.
+            limit.lower_to(safe_until);
+            PairOutcome {
+                contact: None,
+                safe_until,
+                out_of_work: true,
+            }
+        }
+    }
+}
+
 impl<'a> PairCheck<'a> {
     /// Evaluates the pair at the horizon's start; the check is over when it is in contact
     /// there.
@@ -149,12 +170,18 @@ impl<'a> PairCheck<'a> {
         scratch: &mut Scratch,
     ) -> PairOutcome {
         if self.found.is_none() {
-            self.found = Some(self.run(method, s, limit, scratch));
+            // Links, checked by the default method, run ahead of their probes; the loop is
+            // compiled apart for them, so that rigid pairs carry none of it.
+            let links = self.eta.a.link().is_some() || self.eta.b.link().is_some();
+            self.found = Some(match method == Method::DEFAULT && links {
+                true => self.run::<true>(method, s, limit, scratch),
+                false => self.run::<false>(method, s, limit, scratch),
+            });
         }
         self.found.expect("set above")
     }
 
-    fn run(
+    fn run<const AHEAD: bool>(
         &mut self,
         method: Method,
         s: &PairSettings,
@@ -175,50 +202,53 @@ impl<'a> PairCheck<'a> {
             safe_until,
             out_of_work: false,
         };
-        for (t, poses) in grid.by_ref() {
+        let mut ahead = AHEAD.then(RunAhead::default);
+        loop {
+            let afters = grid.afters();
+            let Some(t) = grid.next_time() else {
+                break;
+            };
             *reached += 1;
-            if left.t > limit.get() {
-                return free(left.t);
+            let from = ahead.as_ref().map_or(left.t, |a| a.from(left));
+            if from > limit.get() {
+                return free(from);
             }
             let k = *reached;
             if k > 1 {
-                log.push((left.t, *stats));
+                log.push((from, *stats));
             }
             stats.intervals += 1;
+            if let Some(ahead) = &mut ahead {
+                match ahead.step(eta, grid, left, (afters, t), s, stats) {
+                    Ok(true) => continue,
+                    Ok(false) => {}
+                    Err(stop) => return stopped(limit, eta, stop, k),
+                }
+            }
+            let poses = grid.poses(t);
             let right = eta.at(t, poses, stats);
+            let links = links_of(eta.a, eta.b, afters, left.t, t);
             let span = Span {
                 t0: left.t,
                 t1: t,
                 a: (left.pose_a, right.pose_a),
                 b: (left.pose_b, right.pose_b),
-                links: links_of(eta.a, eta.b, left.t, t),
+                links: links.as_ref(),
             };
             let ends = (Probe { u: 0.0, ..*left }, Probe { u: 1.0, ..right });
             match method.search(eta, &span, ends, s, scratch, stats) {
                 Ok(()) => {}
                 Err(Stop::Contact(witness, safe_until)) => {
                     // Never report a contact before its witness.
-                    let witness = Probe {
-                        t: span.time_after(witness.u),
-                        ..witness
-                    };
-                    return PairOutcome {
-                        contact: contact(limit, eta, &witness, k),
-                        ..free(safe_until)
-                    };
+                    let t = span.time_after(witness.u);
+                    let stop = Stop::Contact(Probe { t, ..witness }, safe_until);
+                    return stopped(limit, eta, stop, k);
                 }
-                Err(Stop::OutOfWork(safe_until)) => {
-                    // Nothing after this can be the scene's first event: no pair need look on.
-                    limit.lower_to(safe_until);
-                    return PairOutcome {
-                        out_of_work: true,
-                        ..free(safe_until)
-                    };
-                }
+                Err(stop) => return stopped(limit, eta, stop, k),
             }
             *left = right;
         }
-        free(left.t)
+        free(ahead.as_ref().map_or(left.t, |a| a.from(left)))
     }
 
     /// What the check found, once [`PairCheck::finish`] ran or the start was a contact.
@@ -244,27 +274,34 @@ impl<'a> PairCheck<'a> {
     }
 }
 
-/// The joints at both ends of `[t0, t1]` of each body that is a link of an arm; `None` for a
-/// pair of rigid bodies.
+/// The joints at both ends of `[t0, t1]` of each body that is a link of an arm, given how
+/// many samples of each body lie at or before `t0`; `None` for a pair of rigid bodies.
 #[inline]
 fn links_of<'s>(
     a: &'s Body,
     b: &'s Body,
+    afters: (usize, usize),
     t0: f64,
     t1: f64,
-) -> Option<Box<[Option<LinkEnds<'s>>; 2]>> {
+) -> Option<[Option<LinkEnds<'s>>; 2]> {
     match (&a.motion, &b.motion) {
-        (Motion::Link(_), _) | (_, Motion::Link(_)) => Some(links_of_arms(a, b, t0, t1)),
+        (Motion::Link(_), _) | (_, Motion::Link(_)) => Some(links_of_arms(a, b, afters, t0, t1)),
         _ => None,
     }
 }
 
 #[inline(never)]
 #[cold]
-fn links_of_arms<'s>(a: &'s Body, b: &'s Body, t0: f64, t1: f64) -> Box<[Option<LinkEnds<'s>>; 2]> {
-    let link = |body: &'s Body| match &body.motion {
-        Motion::Link(l) => Some(LinkEnds::new(l, t0, t1)),
+fn links_of_arms<'s>(
+    a: &'s Body,
+    b: &'s Body,
+    (after_a, after_b): (usize, usize),
+    t0: f64,
+    t1: f64,
+) -> [Option<LinkEnds<'s>>; 2] {
+    let link = |body: &'s Body, after: usize| match &body.motion {
+        Motion::Link(l) => Some(LinkEnds::new(l, after, t0, t1)),
         _ => None,
     };
-    Box::new([link(a), link(b)])
+    [link(a, after_a), link(b, after_b)]
 }

@@ -64,9 +64,9 @@ pub enum Kind {
     ArmSpin,
     /// An arm and a rigid robot wandering across its reach; about half collide. δ = 0.01.
     ArmRobot,
-    /// An arm of long links (3 to 5, then 1 to 2) whose base joint turns fast past a post
-    /// 0.5δ to 2δ beyond the tip's circle: the tip moves tens of units per second. Collides
-    /// when the gap is under δ. δ = 0.01.
+    /// An arm of long links (3 to 5, then 1 to 2) that swings fast past a box, its tip at 25
+    /// to 200 units a second: a graze of a few milliseconds (half the scenes) or a near miss
+    /// by 0.05δ to 0.2δ. δ = 0.01.
     ArmLong,
     /// An arm turning at constant rate towards a post that it reaches within the last 1 % of
     /// the horizon (half the scenes), or stops 1.1δ to 1.5δ short of (the others). δ = 0.01.

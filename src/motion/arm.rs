@@ -108,6 +108,9 @@ pub struct ArmMotion {
     samples: Vec<JointSample>,
     /// `reach[k]`: the radius of link k's body about its own joint (the farthest vertex).
     reach: Vec<f64>,
+    /// r_{j,k} at `levers[j * links + k]` for j ≤ k: the motion bound reads them for every
+    /// interval of the checker.
+    levers: Vec<f64>,
 }
 
 impl ArmMotion {
@@ -186,7 +189,9 @@ impl ArmMotion {
             lengths,
             samples,
             reach,
-        })
+            levers: Vec::new(),
+        }
+        .with_levers())
     }
 
     /// The arm with each link's radius about its joint raised to at least `radii[k]`: the
@@ -196,6 +201,22 @@ impl ArmMotion {
         for (r, &body) in self.reach.iter_mut().zip(radii) {
             *r = r.max(body);
         }
+        self.with_levers()
+    }
+
+    /// The arm with its table of r_{j,k} computed from its lengths and reaches.
+    fn with_levers(mut self) -> ArmMotion {
+        let n = self.links();
+        self.levers = (0..n * n)
+            .map(|i| {
+                let (j, k) = (i / n, i % n);
+                if j <= k {
+                    self.lengths[j..k].iter().sum::<f64>() + self.reach[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         self
     }
 
@@ -234,18 +255,6 @@ impl ArmMotion {
     pub fn q_at(&self, t: f64) -> Vec<f64> {
         let (a, b, u) = self.segment(t);
         (0..self.links()).map(|j| lerp(a[j], b[j], u)).collect()
-    }
-
-    /// The samples' angles about `t` and their times: `(a, b, ta, tb)`, the same sample
-    /// twice (ta = tb) outside the samples.
-    pub(crate) fn samples_about(&self, t: f64) -> (&[f64], &[f64], f64, f64) {
-        let s = &self.samples;
-        let k = s.partition_point(|x| x.t <= t);
-        if k == 0 || k == s.len() {
-            let at = &s[k.saturating_sub(1)];
-            return (&at.q, &at.q, at.t, at.t);
-        }
-        (&s[k - 1].q, &s[k].q, s[k - 1].t, s[k].t)
     }
 
     /// Link `link`'s pose at `t`, given `after`, the number of samples at or before `t` (as
@@ -350,7 +359,8 @@ impl ArmMotion {
     /// # Ok::<(), workcell::motion::ArmError>(())
     /// ```
     pub fn lever(&self, j: usize, k: usize) -> f64 {
-        self.lengths[j..k].iter().sum::<f64>() + self.reach[k]
+        assert!(j <= k, "r_(j,k) is for joints j <= k");
+        self.levers[j * self.links() + k]
     }
 
     /// The motion bound of link `link` while the joints turn linearly from `q0` to `q1`:
@@ -368,8 +378,9 @@ impl ArmMotion {
     /// # Ok::<(), workcell::motion::ArmError>(())
     /// ```
     pub fn lambda(&self, link: usize, q0: &[f64], q1: &[f64]) -> f64 {
+        let n = self.links();
         (0..=link)
-            .map(|j| (q1[j] - q0[j]).abs() * self.lever(j, link))
+            .map(|j| (q1[j] - q0[j]).abs() * self.levers[j * n + link])
             .sum()
     }
 

@@ -227,6 +227,16 @@ fn every_generated_kind_ends_certified() {
             for k in 0..COUNT {
                 let r = check(&generate_scene(kind, seed, k, 10), &CheckOptions::default());
                 colliding += usize::from(r.collision);
+                // The proven prefix ends within the time tolerance before the contact.
+                if let Some(c) = &r.first_contact {
+                    let gap = c.time - r.safe_until;
+                    if !(0.0..=r.time_tol * (1.0 + 1e-9)).contains(&gap) {
+                        failures.push(format!(
+                            "{}-{seed}-{k}: safe_until {gap} before",
+                            kind.name()
+                        ));
+                    }
+                }
                 certified += usize::from(r.certified);
                 if !r.certified {
                     failures.push(format!("{}-{seed}-{k}: {:?}", kind.name(), r.stats));

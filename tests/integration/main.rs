@@ -39,6 +39,7 @@ mod parts_checker;
 mod parts_files;
 mod parts_solve;
 mod planning;
+mod readme;
 mod sequencer;
 mod solve;
 mod stability;

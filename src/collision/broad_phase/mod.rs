@@ -61,34 +61,13 @@ fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> 
     }
     let half = delta.max(0.0) / 2.0;
     let bodies = &scene.bodies;
-    let (mut tracks, mut fixed) = (Vec::new(), Vec::new());
-    for (i, b) in bodies.iter().enumerate() {
-        match &b.motion {
-            Motion::Sampled(tr) => tracks.push((i, tr.samples())),
-            Motion::Link(_) => {} // by arm, below
-            // Obstacles never move: one box each, from their vertices in world position.
-            Motion::Fixed(p) => {
-                let posed = Posed::new(&b.shape, p.pos.x, p.pos.y, p.theta);
-                let mut hull = Aabb::EMPTY;
-                (0..posed.len()).for_each(|k| hull.add(&posed.vertex(k)));
-                fixed.push((i, hull.grown(half, p.pos.amax() + b.shape.radius())));
-            }
-        }
-    }
+    let (tracks, fixed) = tracks_and_fixed(bodies, half);
     let arms = arms_of(bodies);
     if tracks.is_empty() && arms.is_empty() {
         return Vec::new();
     }
     let windows = window_count(scene, &tracks, &arms);
-    let (t0, t1) = scene.horizon();
-    // Window ends, non-decreasing from t0 to t1 exactly; interpolated, not t0 + f·(t1 − t0),
-    // which could overflow.
-    let mut ends = vec![t0];
-    for w in 1..windows {
-        let f = w as f64 / windows as f64;
-        ends.push((t0 * (1.0 - f) + t1 * f).clamp(ends[w - 1], t1));
-    }
-    ends.push(t1);
+    let ends = window_ends(scene.horizon(), windows);
     // Every robot's box in every window (row by robot), robots in parallel: reading the
     // samples is most of the broad phase's work, and each robot's are read once.
     let mut swept = vec![Aabb::EMPTY; tracks.len() * windows];
@@ -136,7 +115,45 @@ fn candidates(scene: &Scene, delta: f64, parallel: bool) -> Vec<(usize, usize)> 
     } else {
         (0..windows).flat_map(in_window).collect()
     };
-    // Report order: robot-robot pairs by (i, j), then robot-obstacle pairs by (robot, obstacle).
+    report_order(bodies, found)
+}
+
+/// The robots' samples, and the obstacles' boxes grown by `half` (arms are gathered apart).
+type TracksAndFixed<'s> = (Vec<(usize, &'s [Sample])>, Vec<(usize, Aabb)>);
+
+fn tracks_and_fixed(bodies: &[Body], half: f64) -> TracksAndFixed<'_> {
+    let (mut tracks, mut fixed) = (Vec::new(), Vec::new());
+    for (i, b) in bodies.iter().enumerate() {
+        match &b.motion {
+            Motion::Sampled(tr) => tracks.push((i, tr.samples())),
+            Motion::Link(_) => {}
+            // Obstacles never move: one box each, from their vertices in world position.
+            Motion::Fixed(p) => {
+                let posed = Posed::new(&b.shape, p.pos.x, p.pos.y, p.theta);
+                let mut hull = Aabb::EMPTY;
+                (0..posed.len()).for_each(|k| hull.add(&posed.vertex(k)));
+                fixed.push((i, hull.grown(half, p.pos.amax() + b.shape.radius())));
+            }
+        }
+    }
+    (tracks, fixed)
+}
+
+/// Window ends, non-decreasing from t0 to t1 exactly; interpolated, not t0 + f·(t1 − t0),
+/// which could overflow.
+fn window_ends((t0, t1): (f64, f64), windows: usize) -> Vec<f64> {
+    let mut ends = vec![t0];
+    for w in 1..windows {
+        let f = w as f64 / windows as f64;
+        ends.push((t0 * (1.0 - f) + t1 * f).clamp(ends[w - 1], t1));
+    }
+    ends.push(t1);
+    ends
+}
+
+/// The pairs `found` in report order, each once: robot-robot pairs by (i, j), then
+/// robot-obstacle pairs by (robot, obstacle).
+fn report_order(bodies: &[Body], found: Vec<(usize, usize)>) -> Vec<(usize, usize)> {
     let robot = |i: usize| bodies[i].is_robot();
     let mut pairs: Vec<_> = found
         .into_iter()
