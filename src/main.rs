@@ -63,6 +63,11 @@ enum Command {
         /// highlighted and the certified-free prefix shown on the time slider.
         #[arg(long)]
         html: Option<PathBuf>,
+        /// Write the still picture of the scene (SVG): each robot's path, each arm where it
+        /// starts (links in its colour, joints as dots, the base as a square), the first
+        /// contact ringed.
+        #[arg(long)]
+        svg: Option<PathBuf>,
     },
     /// Schedule a cell: plan every move, sequence the tasks, check the schedule and re-plan
     /// around collisions until it is collision-free.
@@ -249,6 +254,7 @@ fn main() -> ExitCode {
             per_pair,
             max_work,
             html,
+            svg,
         } => {
             let defaults = CheckOptions::default();
             let max_work_per_pair = max_work.unwrap_or(defaults.max_work_per_pair);
@@ -260,7 +266,7 @@ fn main() -> ExitCode {
                 max_work_per_pair,
                 ..defaults
             };
-            cli::check::run_check(&scene, json, &opts, html.as_deref())
+            cli::check::run_check(&scene, json, &opts, (html.as_deref(), svg.as_deref()))
         }
         Command::Solve {
             cell,

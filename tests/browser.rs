@@ -242,6 +242,7 @@ fn animated_pages_in_headless_chromium() {
     solve_page(&b);
     check_page(&b);
     parts_page(&b);
+    arms_page(&b);
     let _ = std::fs::remove_dir_all(temp_dir());
 }
 
@@ -432,4 +433,78 @@ fn parts_page(b: &Browser) {
     );
     assert_eq!(b.run(seams, json!([])), json!(["visible", "visible"]));
     no_console_errors(b, "parts page");
+}
+
+/// Arms: each link where forward kinematics of the interpolated joints puts it, between the
+/// samples too (not the link's pose interpolated); the base a square, each joint past it a
+/// dot at its link's origin; one row and one Gantt lane for the arm.
+fn arms_page(b: &Browser) {
+    let scene_file = temp("arms.json");
+    let bar = |l: f64, w: f64| json!([[-w, -w], [l + w, -w], [l + w, w], [-w, w]]);
+    let text = json!({
+        "delta": 0.01,
+        "robots": [
+            {"name": "A1", "base": [0, 0, 0.3],
+             "links": [{"length": 1.0, "shape": bar(1.0, 0.08)}, {"length": 0.7, "shape": bar(0.7, 0.06)}],
+             "trajectory": [{"t": 0, "q": [0, 0.4]}, {"t": 1, "q": [2.5, -2.0]}, {"t": 2, "q": [-1, 3.5]}]},
+            {"name": "R1", "shape": [[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]],
+             "trajectory": [{"t": 0, "x": 2.5, "y": 1}, {"t": 2, "x": 2.5, "y": -1}]}
+        ],
+        "obstacles": [{"name": "post", "shape": [[-2.5, -0.2], [-2.2, -0.2], [-2.2, 0.2], [-2.5, 0.2]]}]
+    });
+    std::fs::write(&scene_file, text.to_string()).unwrap();
+    let page = temp("arms.html");
+    let out = workcell(&[
+        "check",
+        scene_file.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let scene = load_scene(&scene_file).unwrap().scene;
+    b.open(&format!("file://{}", page.display()));
+    // Mid-segment the joints' interpolation and the links' poses' differ by far more than
+    // a pixel: the times between samples tell them apart.
+    let times = [0.0, 0.3, 0.5, 0.77, 1.0, 1.4, 2.0];
+    robots_follow_the_trajectories(b, &scene, &times, "arms page");
+    let frame = Frame::read(b);
+    let base = b.run(
+        "const r = document.querySelector('#robots rect.base'); \
+         return [+r.getAttribute('x') + 5, +r.getAttribute('y') + 5];",
+        json!([]),
+    );
+    let base: [f64; 2] = serde_json::from_value(base).unwrap();
+    let want = frame.px(0.0, 0.0);
+    assert!(
+        (base[0] - want[0]).hypot(base[1] - want[1]) <= PIXEL,
+        "base at {base:?}"
+    );
+    for t in [0.25, 1.6] {
+        let shown = set_time(b, t);
+        let dots = b.run(
+            "return Array.from(document.querySelectorAll('#robots circle.joint'))\
+                    .map(c => [+c.getAttribute('cx'), +c.getAttribute('cy')]);",
+            json!([]),
+        );
+        let dots: Vec<[f64; 2]> = serde_json::from_value(dots).unwrap();
+        let elbow = scene.bodies[1].motion.pose_at(shown).pos;
+        let want = frame.px(elbow.x, elbow.y);
+        assert_eq!(dots.len(), 1, "one joint past the base");
+        let off = (dots[0][0] - want[0]).hypot(dots[0][1] - want[1]);
+        assert!(
+            off <= PIXEL,
+            "elbow drawn at {:?}, at {want:?} by the kinematics",
+            dots[0]
+        );
+    }
+    let rows = b.run(
+        "return document.querySelectorAll('#status tr').length;",
+        json!([]),
+    );
+    assert_eq!(rows, json!(2), "one row for the arm, one for R1");
+    no_console_errors(b, "arms page");
 }

@@ -11,16 +11,19 @@ use workcell::collision::{check, validate, CheckOptions, CheckReport, Verdict};
 const EXIT_UNRESOLVED: u8 = 3;
 
 /// Runs the check; the exit status is 0 collision-free, 1 collision, 3 unresolved within
-/// the work budget. `html`: the animated page of the scene, written after the check.
+/// the work budget. `html` and `svg`: the animated page and the still picture of the scene,
+/// written after the check.
 pub fn run_check(
     path: &Path,
     json: bool,
     opts: &CheckOptions,
-    html: Option<&Path>,
+    (html, svg): (Option<&Path>, Option<&Path>),
 ) -> Result<ExitCode, InputError> {
-    if let Some(file) = html {
-        super::output::check_outputs(&[path], &[("--html", file)])?;
-    }
+    let outputs: Vec<(&str, &Path)> = [("--html", html), ("--svg", svg)]
+        .into_iter()
+        .filter_map(|(option, file)| Some((option, file?)))
+        .collect();
+    super::output::check_outputs(&[path], &outputs)?;
     let loaded = load_scene(path)?;
     check_precision(
         &loaded.scene,
@@ -45,9 +48,14 @@ pub fn run_check(
     };
     // A closed pipe (`| head`) is the reader's choice, not an error of ours.
     let _ = std::io::stdout().write_all(text.as_bytes());
-    if let Some(file) = html {
+    if !outputs.is_empty() {
         let model = workcell::view::Model::of_check(path, &loaded.scene, &report);
-        super::output::write_file(file, workcell::view::html(&model).as_bytes())?;
+        if let Some(file) = html {
+            super::output::write_file(file, workcell::view::html(&model).as_bytes())?;
+        }
+        if let Some(file) = svg {
+            super::output::write_file(file, workcell::view::picture(&model).as_bytes())?;
+        }
     }
     if report.stats.unresolved > 0 {
         return Err(InputError {

@@ -83,7 +83,8 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
         scale: (width - LEFT - RIGHT) / (t1 - t0),
         left: LEFT,
     };
-    let lanes_bottom = HEADER + LANE * m.robots.len() as f64;
+    // One lane per robot: an arm's links share its first link's.
+    let lanes_bottom = HEADER + LANE * m.robots.iter().filter(|r| r.leads()).count() as f64;
     let kinds: Vec<_> = KINDS
         .iter()
         .filter(|k| {
@@ -104,7 +105,7 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
     let mut doc = chart.header(height);
     doc = chart.ticks(doc);
     let mut placer = Placer::new([LEFT, 48.0, width, lanes_bottom]);
-    for (r, robot) in m.robots.iter().enumerate() {
+    for (r, robot) in m.robots.iter().filter(|r| r.leads()).enumerate() {
         doc = chart.lane(doc, r, robot, &mut placer);
     }
     doc = chart.makespan(doc, &mut placer);
@@ -283,7 +284,8 @@ impl Chart<'_> {
     /// is free.
     fn collisions(&self, mut doc: Document, placer: &mut Placer) -> Document {
         let m = self.m;
-        let lane_of = |name: &str| m.robots.iter().position(|r| r.name == name);
+        let lanes = || m.robots.iter().filter(|r| r.leads());
+        let lane_of = |name: &str| lanes().position(|r| r.name == name);
         let mut diamonds = Group::new().set("fill", "#d50000").set("stroke", "white");
         let mut numbers = Vec::new();
         for mark in self.marks() {

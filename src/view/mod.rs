@@ -16,5 +16,7 @@ pub use chart::chart;
 pub use gantt::{gantt, gantt_svg, TimeAxis};
 pub use html::html;
 pub use labels::{text_width, Placer};
-pub use model::{kind_colour, pose_at, Bar, Mark, Model, RobotView, TaskView, COLOURS, KINDS};
+pub use model::{
+    kind_colour, pose_at, ArmView, Bar, Mark, Model, RobotView, TaskView, COLOURS, KINDS,
+};
 pub use picture::{cell_svg, picture, placed, Frame};

@@ -58,8 +58,12 @@ pub struct RobotView {
     /// Whether the body was given by an outline (`shape` holds it).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub outlined: bool,
-    /// Its samples `[t, x, y, θ]`: the checker interpolates linearly between them.
+    /// Its samples `[t, x, y, θ]`: the checker interpolates linearly between them. For a
+    /// link of an arm, its frame at the arm's sample times (`arm` places it between them).
     pub samples: Vec<[f64; 4]>,
+    /// For a link of an arm: what places it at every time, as the checker does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub arm: Option<ArmView>,
     /// Its home pose `[x, y, θ]` (cells only).
     pub home: Option<[f64; 3]>,
     /// Indices into [`Model::tasks`] in visiting order.
@@ -68,7 +72,42 @@ pub struct RobotView {
     pub bars: Vec<Bar>,
 }
 
+/// A link of an arm as the page places it: forward kinematics (contract section 6) of the
+/// joint angles, each linear between samples ([`crate::motion::ArmMotion::pose_at`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct ArmView {
+    /// The base pose `[x, y, θ]`.
+    pub base: [f64; 3],
+    /// The link lengths.
+    pub lengths: Vec<f64>,
+    /// Which link this is (0 at the base).
+    pub link: usize,
+    /// The samples `[t, q_0, q_1, ...]`.
+    pub joints: Vec<Vec<f64>>,
+}
+
 impl RobotView {
+    /// Whether this robot has a lane, a row and a name of its own: every robot but the links
+    /// of an arm after its first, which belong to the arm's.
+    ///
+    /// ```
+    /// use workcell::collision::{check, Arm, CheckOptions, Scene};
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::Pose;
+    /// use workcell::view::Model;
+    /// let bar = ConvexPolygon::from_vertices(&[[-0.1, -0.1], [1.1, -0.1], [1.1, 0.1], [-0.1, 0.1]])?;
+    /// let arm = Arm::new("A1", Pose::new(0.0, 0.0, 0.0)).link(1.0, bar.clone()).link(1.0, bar)
+    ///     .sample(0.0, &[0.0, 0.0]).sample(1.0, &[1.0, -1.0]).bodies()?;
+    /// let scene = Scene::with_bodies(0.01, arm)?;
+    /// let model = Model::of_check("arm.json".as_ref(), &scene, &check(&scene, &CheckOptions::default()));
+    /// let leads: Vec<bool> = model.robots.iter().map(|r| r.leads()).collect();
+    /// assert_eq!(leads, [true, false]); // one lane for the arm, its link 0's
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn leads(&self) -> bool {
+        self.arm.as_ref().is_none_or(|a| a.link == 0)
+    }
+
     /// The polygons that draw the body: its parts when it was given by parts, else its one
     /// shape (convex, or its outline).
     ///
@@ -187,14 +226,23 @@ fn robots_of(scene: &Scene) -> Vec<RobotView> {
                     .iter()
                     .map(|s| [s.t, s.pos.x, s.pos.y, s.theta])
                     .collect(),
-                // A link drawn at its arm's sample times (between them the page interpolates
-                // the link's pose, not the joints).
                 Motion::Link(l) => l
                     .frames()
                     .iter()
                     .map(|s| [s.t, s.pos.x, s.pos.y, s.theta])
                     .collect(),
                 Motion::Fixed(p) => vec![[0.0, p.pos.x, p.pos.y, p.theta]],
+            },
+            arm: match &b.motion {
+                Motion::Link(l) => Some(ArmView {
+                    base: [l.arm.base().pos.x, l.arm.base().pos.y, l.arm.base().theta],
+                    lengths: l.arm.lengths().to_vec(),
+                    link: l.link,
+                    joints: (l.arm.samples().iter())
+                        .map(|s| std::iter::once(s.t).chain(s.q.iter().copied()).collect())
+                        .collect(),
+                }),
+                _ => None,
             },
             home: None,
             order: Vec::new(),
@@ -342,7 +390,11 @@ impl Model {
     pub fn of_check(file: &std::path::Path, scene: &Scene, report: &CheckReport) -> Model {
         let mut robots = robots_of(scene);
         for robot in &mut robots {
-            robot.bars = still_and_moving(&robot.samples);
+            // An arm moves while any joint turns.
+            robot.bars = match &robot.arm {
+                Some(arm) => still_and_moving(&arm.joints),
+                None => still_and_moving(&robot.samples),
+            };
         }
         let contact = report.first_contact.as_ref().map(|c| {
             let body = |name: &str| scene.bodies.iter().find(|b| b.name == name);
@@ -435,22 +487,20 @@ pub fn pose_at(samples: &[[f64; 4]], t: f64) -> [f64; 3] {
 }
 
 /// A scene's robot has no activities, only samples: its spans of motion and of rest.
-fn still_and_moving(samples: &[[f64; 4]]) -> Vec<Bar> {
+/// Each sample is `[t, state...]`: a pose, or an arm's joint angles.
+fn still_and_moving<S: AsRef<[f64]>>(samples: &[S]) -> Vec<Bar> {
     let mut bars: Vec<Bar> = Vec::new();
     for w in samples.windows(2) {
-        let kind = if w[0][1..] == w[1][1..] {
-            "still"
-        } else {
-            "move"
-        };
+        let (a, b) = (w[0].as_ref(), w[1].as_ref());
+        let kind = if a[1..] == b[1..] { "still" } else { "move" };
         match bars.last_mut() {
-            Some(b) if b.kind == kind => b.end = w[1][0],
+            Some(bar) if bar.kind == kind => bar.end = b[0],
             _ => bars.push(Bar {
                 kind,
                 label: if kind == "move" { "moving" } else { "still" }.to_owned(),
                 short: String::new(),
-                start: w[0][0],
-                end: w[1][0],
+                start: a[0],
+                end: b[0],
             }),
         }
     }

@@ -7,7 +7,8 @@
 //! ring numbered by round.
 
 use super::labels::{text_width, Placer, Rect};
-use super::model::{pose_at, Mark, Model, RobotView};
+use super::model::{pose_at, ArmView, Mark, Model, RobotView};
+use crate::motion::{forward_kinematics, Pose};
 use svg::node::element::{Circle, Group, Line, Polygon, Polyline, Rectangle, Text};
 use svg::Document;
 
@@ -338,6 +339,9 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
             }
         }
     }
+    if let Some(arm) = &robot.arm {
+        group = group.add(arm_marks(arm, robot, frame, animated));
+    }
     if let Some(h) = robot.home {
         let (x, y) = frame.xy(h[0], h[1]);
         group = group.add(
@@ -347,6 +351,54 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
                 .set("width", 10)
                 .set("height", 10)
                 .set("fill", colour),
+        );
+    }
+    group
+}
+
+/// A link of an arm: the base as a square (link 0), and in the still picture the link where
+/// the arm starts, with its joint as a dot (links past the base); the page draws them moving.
+fn arm_marks(arm: &ArmView, robot: &RobotView, frame: &Frame, animated: bool) -> Group {
+    let mut group = Group::new();
+    if arm.link == 0 {
+        let (x, y) = frame.xy(arm.base[0], arm.base[1]);
+        group = group.add(
+            Rectangle::new()
+                .set("class", "base")
+                .set("x", x - 5.0)
+                .set("y", y - 5.0)
+                .set("width", 10)
+                .set("height", 10)
+                .set("fill", robot.colour),
+        );
+    }
+    if animated {
+        return group;
+    }
+    let Some(first) = arm.joints.first() else {
+        return group;
+    };
+    let base = Pose::new(arm.base[0], arm.base[1], arm.base[2]);
+    let p = forward_kinematics(base, &arm.lengths, &first[1..], arm.link);
+    for polygon in robot.drawn() {
+        group = group.add(
+            frame
+                .polygon(placed(polygon, [p.pos.x, p.pos.y, p.theta]))
+                .set("fill", robot.colour)
+                .set("fill-opacity", 0.3)
+                .set("stroke-width", 1),
+        );
+    }
+    if arm.link > 0 {
+        let (x, y) = frame.xy(p.pos.x, p.pos.y);
+        group = group.add(
+            Circle::new()
+                .set("class", "joint")
+                .set("cx", x)
+                .set("cy", y)
+                .set("r", 3.5)
+                .set("fill", robot.colour)
+                .set("stroke", "white"),
         );
     }
     group

@@ -20,10 +20,9 @@
   // The contact is shown this close to its time (a fraction of the horizon).
   const CONTACT_WINDOW = 0.01 * (t1 - t0);
 
-  // The pose at t exactly as the checker interpolates (src/motion/trajectory.rs): linear in
-  // x, y and θ between samples, by the fraction of the time step; the first pose before the
-  // samples and the last after them.
-  function poseAt(samples, t) {
+  // The samples about t: [p, q, u], t at the fraction u of the way from p to q; the first
+  // sample twice before the samples, the last twice after them (u = 0).
+  function segment(samples, t) {
     let lo = 0;
     let hi = samples.length;
     while (lo < hi) {
@@ -31,19 +30,41 @@
       if (samples[mid][0] <= t) lo = mid + 1;
       else hi = mid;
     }
-    let p;
-    let q;
-    let u = 0;
-    if (lo === 0) {
-      p = q = samples[0];
-    } else if (lo === samples.length) {
-      p = q = samples[lo - 1];
-    } else {
-      p = samples[lo - 1];
-      q = samples[lo];
-      u = (t - p[0]) / (q[0] - p[0]);
-    }
+    if (lo === 0) return [samples[0], samples[0], 0];
+    if (lo === samples.length) return [samples[lo - 1], samples[lo - 1], 0];
+    const p = samples[lo - 1];
+    const q = samples[lo];
+    return [p, q, (t - p[0]) / (q[0] - p[0])];
+  }
+
+  // The pose at t exactly as the checker interpolates (src/motion/trajectory.rs): linear in
+  // x, y and θ between samples, by the fraction of the time step; the first pose before the
+  // samples and the last after them.
+  function poseAt(samples, t) {
+    const [p, q, u] = segment(samples, t);
     return [p[1] + (q[1] - p[1]) * u, p[2] + (q[2] - p[2]) * u, p[3] + (q[3] - p[3]) * u];
+  }
+
+  // A link's frame at t as the checker places it (src/motion/arm.rs): each joint linear
+  // between samples, then forward kinematics from the base (contract section 6).
+  function linkPose(arm, t) {
+    const [p, q, u] = segment(arm.joints, t);
+    const angle = function (j) {
+      return u === 0 ? p[j + 1] : p[j + 1] + (q[j + 1] - p[j + 1]) * u;
+    };
+    let x = arm.base[0];
+    let y = arm.base[1];
+    let th = arm.base[2] + angle(0);
+    for (let k = 1; k <= arm.link; k++) {
+      x += arm.lengths[k - 1] * Math.cos(th);
+      y += arm.lengths[k - 1] * Math.sin(th);
+      th += angle(k);
+    }
+    return [x, y, th];
+  }
+
+  function poseOf(robot, t) {
+    return robot.arm ? linkPose(robot.arm, t) : poseAt(robot.samples, t);
   }
 
   function px(x, y) {
@@ -92,6 +113,14 @@
       g.appendChild(p);
       return { local: local, el: p };
     });
+    // An arm: its base a square, each joint past the base a dot at its link's origin.
+    let joint = null;
+    if (robot.arm && robot.arm.link === 0) {
+      const b = px(robot.arm.base[0], robot.arm.base[1]);
+      g.appendChild(el("rect", { class: "base", x: b[0] - 5, y: b[1] - 5, width: 10, height: 10, fill: robot.colour }));
+    } else if (robot.arm) {
+      joint = el("circle", { class: "joint", r: 3.5, fill: robot.colour, stroke: "#fff", "stroke-width": 1 });
+    }
     const seams = (robot.outlined ? robot.parts : []).map(function (local) {
       const p = el("polygon", { fill: "none", stroke: "#000", "stroke-opacity": 0.35, "stroke-width": 0.5 });
       p.setAttribute("visibility", "hidden");
@@ -116,11 +145,14 @@
       selected = r;
       showInfo(r);
     });
+    if (joint) g.appendChild(joint);
     robotsLayer.appendChild(g);
-    return { polys: polys, seams: seams };
+    return { polys: polys, seams: seams, joint: joint };
   });
 
+  // A row per robot: an arm's links share its first link's.
   const statusCells = m.robots.map(function (robot) {
+    if (robot.arm && robot.arm.link > 0) return null;
     const row = document.createElement("tr");
     const name = document.createElement("td");
     name.textContent = robot.name;
@@ -199,7 +231,7 @@
   let t = t0;
   function draw() {
     m.robots.forEach(function (robot, r) {
-      const p = poseAt(robot.samples, t);
+      const p = poseOf(robot, t);
       const c = Math.cos(p[2]);
       const s = Math.sin(p[2]);
       const place = function (local) {
@@ -219,8 +251,13 @@
       shapes[r].seams.forEach(function (seam) {
         seam.el.setAttribute("points", place(seam.local));
       });
+      if (shapes[r].joint) {
+        const j = px(p[0], p[1]);
+        shapes[r].joint.setAttribute("cx", j[0].toFixed(3));
+        shapes[r].joint.setAttribute("cy", j[1].toFixed(3));
+      }
       const what = describe(robot, t);
-      if (statusCells[r].textContent !== what) statusCells[r].textContent = what;
+      if (statusCells[r] && statusCells[r].textContent !== what) statusCells[r].textContent = what;
     });
     if (contactRing) {
       const near = Math.abs(t - m.contact.time) <= CONTACT_WINDOW;

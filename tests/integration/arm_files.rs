@@ -168,3 +168,68 @@ fn fields_count_an_arm_once() {
         (Some("R"), "robots[1].trajectory[1].x")
     );
 }
+
+/// `check --svg` draws the arm where it starts: each link's body in the arm's colour (its
+/// second link as its two parts), its base as a square, the joint past it as a dot where
+/// forward kinematics puts it; `--svg` and `--html` may not name one file.
+#[cfg(feature = "cli")]
+#[test]
+fn the_still_picture_draws_an_arm() {
+    let dir = crate::common::temp_dir_made("arm_files", "still_picture");
+    let file = dir.join("arm.json");
+    std::fs::write(&file, scene(|_| {})).unwrap();
+    let svg = dir.join("arm.svg");
+    let out = crate::common::workcell(&[
+        "check",
+        file.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert_eq!(text.matches("class=\"base\"").count(), 1, "one base");
+    assert_eq!(
+        text.matches("class=\"joint\"").count(),
+        1,
+        "one joint past the base"
+    );
+    let colour = workcell::view::COLOURS[0];
+    let bodies = text
+        .matches(&format!("fill=\"{colour}\" fill-opacity=\"0.3\""))
+        .count();
+    assert_eq!(bodies, 3, "link 0, and link 1's two parts");
+    // The joint is the elbow at q = (0, 0), 0.8 right of the base: drawn level with it and
+    // to its right (the picture's y axis points down, its x axis right).
+    let attribute = |element: &str, name: &str| -> f64 {
+        let i = text.find(element).unwrap();
+        let tag = &text[i..i + text[i..].find('>').unwrap()];
+        let at = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        tag[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    let base = (
+        attribute("<rect class=\"base\"", "x") + 5.0,
+        attribute("<rect class=\"base\"", "y") + 5.0,
+    );
+    let elbow = (
+        attribute("<circle class=\"joint\"", "cx"),
+        attribute("<circle class=\"joint\"", "cy"),
+    );
+    assert!(
+        (elbow.1 - base.1).abs() < 1e-6 && elbow.0 > base.0 + 10.0,
+        "base {base:?}, elbow {elbow:?}"
+    );
+    let same = crate::common::workcell(&[
+        "check",
+        file.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "--html",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(same.status.code(), Some(2));
+}
