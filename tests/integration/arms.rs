@@ -298,3 +298,75 @@ fn late_contacts_come_exactly_where_the_geometry_puts_them() {
     }
     assert!(late >= 5 && short >= 5, "{late} late, {short} short");
 }
+
+/// The work budget keeps its meaning for arms, whether a pair runs ahead of its probes or
+/// searches: a budget too small for a colliding scene stops the check with no verdict, its
+/// proven prefix before the contact and never shrinking as the budget grows; enough budget
+/// finds the contact. The same on 1, 2 and 4 threads.
+#[test]
+fn the_work_budget_holds_for_arms() {
+    use workcell::generate::{generate_scene, Kind};
+    let pools = [1, 2, 4].map(|n| ThreadPoolBuilder::new().num_threads(n).build().unwrap());
+    let mut stopped = 0;
+    for k in 0..6 {
+        let scene = generate_scene(Kind::Arms, 1, k, 0);
+        let full = check(&scene, &CheckOptions::default());
+        let Some(contact) = &full.first_contact else {
+            continue;
+        };
+        if contact.time == full.horizon[0] {
+            continue; // in contact at the start: no budget is spent before
+        }
+        let mut last = f64::NEG_INFINITY;
+        for budget in [1, 2, 5, 20, 100, 1000] {
+            let opts = CheckOptions {
+                max_work_per_pair: budget,
+                ..CheckOptions::default()
+            };
+            let r = check(&scene, &opts);
+            // No pair works past its budget, the intervals it runs ahead over included.
+            let work = r.stats.intervals + r.stats.bisections + r.stats.looks;
+            assert!(
+                work <= budget * r.pairs as u64,
+                "scene {k}: {work} for {budget}"
+            );
+            for pool in &pools {
+                let again = pool.install(|| check(&scene, &opts));
+                assert_eq!(
+                    serde_json::to_value(&again).unwrap()["stats"],
+                    serde_json::to_value(&r).unwrap()["stats"]
+                );
+                assert_eq!(
+                    (again.safe_until, again.collision),
+                    (r.safe_until, r.collision)
+                );
+            }
+            match &r.budget_exhausted {
+                Some(b) => {
+                    stopped += 1;
+                    assert!(!r.collision && !r.certified, "scene {k}, budget {budget}");
+                    assert!(
+                        b.time <= contact.time && r.safe_until <= b.time,
+                        "scene {k}: {b:?}"
+                    );
+                    assert!(
+                        r.safe_until >= last,
+                        "scene {k}: the prefix shrank at {budget}"
+                    );
+                    last = r.safe_until;
+                }
+                None => {
+                    let c = r
+                        .first_contact
+                        .as_ref()
+                        .expect("the contact, with enough budget");
+                    assert_eq!(c.time, contact.time, "scene {k}, budget {budget}");
+                }
+            }
+        }
+    }
+    assert!(
+        stopped >= 6,
+        "only {stopped} checks ran out of budget: the test shows little"
+    );
+}
