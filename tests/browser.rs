@@ -386,6 +386,26 @@ fn check_page(b: &Browser) {
     no_console_errors(b, "check page");
 }
 
+/// Writes `text` to `scene_file`, checks it with `--html` beside it and opens the page; the
+/// scene as the checker read it.
+fn open_checked(b: &Browser, scene_file: &Path, text: &Value) -> Scene {
+    std::fs::write(scene_file, text.to_string()).unwrap();
+    let page = scene_file.with_extension("html");
+    let out = workcell(&[
+        "check",
+        scene_file.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    b.open(&format!("file://{}", page.display()));
+    load_scene(scene_file).unwrap().scene
+}
+
 /// Bodies of parts: drawn part by part, an outline as itself, its seams on hover only.
 fn parts_page(b: &Browser) {
     let scene_file = temp("parts.json");
@@ -402,21 +422,7 @@ fn parts_page(b: &Browser) {
         "obstacles": [{"name": "U", "outline": [[2, -1], [3, -1], [3, 1], [2, 1], [2, 0.8],
                                                 [2.8, 0.8], [2.8, -0.8], [2, -0.8]]}]
     });
-    std::fs::write(&scene_file, text.to_string()).unwrap();
-    let page = temp("parts.html");
-    let out = workcell(&[
-        "check",
-        scene_file.to_str().unwrap(),
-        "--html",
-        page.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let scene = load_scene(&scene_file).unwrap().scene;
-    b.open(&format!("file://{}", page.display()));
+    let scene = open_checked(b, &scene_file, &text);
     robots_follow_the_trajectories(b, &scene, &[0.0, 0.7, 1.3, 2.0], "parts page");
     let seams =
         "return Array.from(document.querySelectorAll('#robot-1 polygon:not([fill-opacity])'))\
@@ -452,21 +458,7 @@ fn arms_page(b: &Browser) {
         ],
         "obstacles": [{"name": "post", "shape": [[-2.5, -0.2], [-2.2, -0.2], [-2.2, 0.2], [-2.5, 0.2]]}]
     });
-    std::fs::write(&scene_file, text.to_string()).unwrap();
-    let page = temp("arms.html");
-    let out = workcell(&[
-        "check",
-        scene_file.to_str().unwrap(),
-        "--html",
-        page.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let scene = load_scene(&scene_file).unwrap().scene;
-    b.open(&format!("file://{}", page.display()));
+    let scene = open_checked(b, &scene_file, &text);
     // Mid-segment the joints' interpolation and the links' poses' differ by far more than
     // a pixel: the times between samples tell them apart.
     let times = [0.0, 0.3, 0.5, 0.77, 1.0, 1.4, 2.0];
