@@ -209,6 +209,39 @@ fn an_arm_stretching_between_its_samples_keeps_its_reach() {
     );
 }
 
+/// An arm rests at its first pose before its first sample and at its last after its last,
+/// as the checker has it: robots that cross it there, in windows outside its samples, keep
+/// their pairs.
+#[test]
+fn an_arm_is_boxed_where_it_rests_outside_its_samples() {
+    use crate::collision::Arm;
+    let bar = ConvexPolygon::new(&[[-0.05, -0.05], [1.05, -0.05], [1.05, 0.05], [-0.05, 0.05]])
+        .unwrap()
+        .0;
+    let mut scene = Scene::new(0.01).unwrap();
+    // Across the arm pointing along +x, before its samples; across it pointing along +y,
+    // after them.
+    scene.bodies.push(robot(
+        "R1",
+        &[(0.0, 0.6, -3.0), (1.6, 0.6, 3.0), (5.0, 0.6, 3.0)],
+    ));
+    scene.bodies.push(robot(
+        "R2",
+        &[(0.0, -3.0, 3.0), (3.5, -3.0, 0.6), (5.0, 3.0, 0.6)],
+    ));
+    let arm = Arm::new("A1", Pose::new(0.0, 0.0, 0.0))
+        .link(1.0, bar)
+        .sample(2.0, &[0.0])
+        .sample(3.0, &[std::f64::consts::FRAC_PI_2]);
+    scene.bodies.extend(arm.bodies().unwrap());
+    let candidates = candidate_pairs(&scene, scene.delta);
+    assert!(
+        candidates.contains(&(0, 2)) && candidates.contains(&(1, 2)),
+        "{candidates:?}"
+    );
+    pruning_is_safe(&scene, scene.delta);
+}
+
 #[test]
 fn the_thread_pool_changes_nothing() {
     let pools = [1, 2, 4].map(|n| {
