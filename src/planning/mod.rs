@@ -80,8 +80,10 @@
 //! assert_eq!(planned.samples.last().unwrap().pos, Vec2::new(10.0, 0.0));
 //! ```
 
+mod arm_reach;
 mod corners;
 mod grown;
+mod joint_move;
 mod minkowski;
 mod plan;
 mod sampling;
@@ -90,6 +92,8 @@ mod turn_apart;
 mod visibility;
 
 pub use crate::motion::rest_to_rest_time;
+pub use arm_reach::{ArmModel, Refusal};
+pub use joint_move::{joint_move, JointLimits, JointMove};
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;
 
