@@ -34,9 +34,19 @@ struct RawRobot {
     #[serde(default)]
     outline: Option<Vec<Point>>,
     home: Vec<f64>,
-    max_speed: f64,
-    max_accel: f64,
-    max_turn_rate: f64,
+    // Optional here so that a missing one is named by its field, and an arm (which has none
+    // of them) by its own.
+    #[serde(default)]
+    max_speed: Option<f64>,
+    #[serde(default)]
+    max_accel: Option<f64>,
+    #[serde(default)]
+    max_turn_rate: Option<f64>,
+    /// An arm's (contract section 7), refused by name until the solver schedules arms.
+    #[serde(default)]
+    base: Option<serde_json::Value>,
+    #[serde(default)]
+    links: Option<serde_json::Value>,
 }
 
 #[derive(Deserialize)]
@@ -180,6 +190,15 @@ fn read_robot(
     let at = format!("robots[{k}]");
     let err = |field: String, reason: String| InputError::new(file, Some(&r.name), field, reason);
     names.claim(file, &r.name, &at, "robot")?;
+    if r.links.is_some() || r.base.is_some() {
+        let field = if r.links.is_some() { "links" } else { "base" };
+        let reason = "an arm (contract section 7): `workcell solve` and `evaluate` do not \
+                      schedule arms yet; `workcell check` checks an arm's trajectory (section 6)";
+        return Err(err(format!("{at}.{field}"), reason.to_owned()));
+    }
+    let limit = |value: Option<f64>, field: &str| {
+        value.ok_or_else(|| err(format!("{at}.{field}"), format!("missing field `{field}`")))
+    };
     let (shape, parts) = body_shape(
         file,
         &r.name,
@@ -194,9 +213,9 @@ fn read_robot(
         shape,
         parts,
         home,
-        max_speed: r.max_speed,
-        max_accel: r.max_accel,
-        max_turn_rate: r.max_turn_rate,
+        max_speed: limit(r.max_speed, "max_speed")?,
+        max_accel: limit(r.max_accel, "max_accel")?,
+        max_turn_rate: limit(r.max_turn_rate, "max_turn_rate")?,
     };
     check_limits(file, &at, &robot)?;
     Ok(robot)

@@ -70,6 +70,36 @@ fn duplicate_names_are_refused_across_kinds() {
     assert_eq!(e.field, "robots[1].name");
 }
 
+/// A missing limit is named by its field; an arm (contract section 7), which the solver does
+/// not schedule yet, by its `links` (or its `base`), not by the rigid limits it lacks.
+#[test]
+fn missing_limits_and_arms_are_named() {
+    for field in ["max_speed", "max_accel", "max_turn_rate"] {
+        let text = cell(&robot("R1", "[0, 0]"), "", "")
+            .replace(&format!(r#""{field}": "#), r#""other": "#);
+        let e = refused(&text);
+        assert_eq!(
+            (e.body.as_deref(), e.field.as_str()),
+            (Some("R1"), format!("robots[0].{field}").as_str()),
+            "{e}"
+        );
+        assert!(e.reason.contains("missing"), "{e}");
+    }
+    let arm = r#"{"name": "A1", "base": [0, 0, 0], "home": [0, 1.57],
+        "links": [{"length": 0.8, "shape": [[-0.1,-0.1],[0.9,-0.1],[0.9,0.1],[-0.1,0.1]]}],
+        "max_joint_speed": 2, "max_joint_accel": 4}"#;
+    let text = cell(&format!("{}, {arm}", robot("R1", "[0, 0]")), "", "");
+    let e = refused(&text);
+    assert_eq!(
+        (e.body.as_deref(), e.field.as_str()),
+        (Some("A1"), "robots[1].links"),
+        "{e}"
+    );
+    assert!(e.reason.contains("do not schedule arms yet"), "{e}");
+    let base_only = text.replace(r#""links": "#, r#""other": "#);
+    assert_eq!(refused(&base_only).field, "robots[1].base");
+}
+
 #[test]
 fn non_positive_limits_are_refused() {
     for field in ["max_speed", "max_accel", "max_turn_rate"] {
