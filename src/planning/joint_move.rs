@@ -92,13 +92,22 @@ pub fn joint_move(
         })
         .collect();
     // Every joint's phase changes, each phase cut evenly.
-    let mut times: Vec<f64> = profiles.iter().flat_map(|p| p.boundaries()).collect();
+    let mut times: Vec<f64> = (profiles.iter())
+        .flat_map(|p| p.boundaries())
+        .map(|t| t.clamp(0.0, duration))
+        .collect();
     times.sort_by(f64::total_cmp);
     times.dedup();
     let cuts = samples_per_phase.max(1);
     let mut at: Vec<f64> = Vec::new();
     for w in times.windows(2) {
-        at.extend((0..cuts).map(|k| w[0] + (w[1] - w[0]) * k as f64 / cuts as f64));
+        for k in 0..cuts {
+            let t = w[0] + (w[1] - w[0]) * k as f64 / cuts as f64;
+            // Strictly increasing, whatever rounding does to phases of a few ulps.
+            if at.last().is_none_or(|&last| t > last) && t < duration {
+                at.push(t);
+            }
+        }
     }
     at.push(duration);
     let samples = at

@@ -84,6 +84,7 @@ mod arm_reach;
 mod corners;
 mod grown;
 mod joint_move;
+mod joint_paths;
 mod minkowski;
 mod plan;
 mod sampling;
@@ -94,6 +95,7 @@ mod visibility;
 pub use crate::motion::rest_to_rest_time;
 pub use arm_reach::{ArmModel, Refusal};
 pub use joint_move::{joint_move, JointLimits, JointMove};
+pub use joint_paths::{JointPath, JointPathSettings};
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;
 
