@@ -190,6 +190,31 @@ mod tests {
         assert!(m.samples.iter().all(|s| s.q[2] == 0.0));
     }
 
+    /// Across many moves, some with phases a few ulps long (joints of equal limits turning by
+    /// nearly equal angles), the sample times strictly increase and the move ends on time.
+    #[test]
+    fn sample_times_strictly_increase() {
+        let l = JointLimits {
+            range: vec![None, None, Some([-10.0, 10.0])],
+            max_speed: vec![1.0, 1.0, 1.0],
+            max_accel: vec![2.0, 2.0, 2.0],
+        };
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..2000 {
+            let a = 3.0 * next();
+            let to = [a, a * (1.0 + 1e-15 * next()), -a + 1e-13 * next()];
+            let m = joint_move(&[0.0; 3], &to, &l, 1 + (next() * 5.0) as usize);
+            assert!(m.samples.windows(2).all(|w| w[1].t > w[0].t), "{m:?}");
+            assert_eq!(m.samples.last().unwrap().t, m.duration);
+        }
+    }
+
     #[test]
     fn no_move_takes_no_time() {
         let m = joint_move(&[1.0, 0.5, -2.0], &[1.0, 0.5, -2.0 + TAU], &limits(), 3);
