@@ -174,7 +174,7 @@ fn search_with(
     }
     match &mut mode {
         Grazes::Refine => grazes.accept(stats),
-        Grazes::Collect(out) => out.append(&mut grazes.starts),
+        Grazes::Collect(out) => grazes.hand_over(span, out),
     }
     Ok(())
 }
@@ -182,35 +182,39 @@ fn search_with(
 /// The grazes met since the last proof, in time order, not yet accepted.
 #[derive(Default)]
 struct PendingGrazes {
+    /// Where the first of them starts.
+    start: f64,
     intervals: Vec<(Probe, Probe)>,
-    /// Where each starts.
-    starts: Vec<f64>,
 }
 
 impl PendingGrazes {
     /// A graze on `interval`, which starts at time `t`.
     fn add(&mut self, interval: (Probe, Probe), t: f64) {
+        if self.intervals.is_empty() {
+            self.start = t;
+        }
         self.intervals.push(interval);
-        self.starts.push(t);
     }
 
     /// The start of the pending grazes, when a witness at `t` is within `time_tol` of it:
     /// they are then part of the contact, not grazes.
     fn within(&mut self, t: f64, time_tol: f64) -> Option<f64> {
-        let start = *self.starts.first()?;
-        if t - start > time_tol {
+        if self.intervals.is_empty() || t - self.start > time_tol {
             return None;
         }
         self.intervals.clear();
-        self.starts.clear();
-        Some(start)
+        Some(self.start)
     }
 
     /// No contact follows: the pending grazes are accepted.
     fn accept(&mut self, stats: &mut Stats) {
         stats.grazing += self.intervals.len() as u64;
         self.intervals.clear();
-        self.starts.clear();
+    }
+
+    /// Where each pending graze starts, handed over to a refining search (see [`Grazes`]).
+    fn hand_over(&mut self, span: &Span, out: &mut Vec<f64>) {
+        out.extend(self.intervals.drain(..).map(|(l, _)| span.time_before(l.u)));
     }
 
     /// A contact follows, its witness at `witness` of the span, farther than a time tolerance from the
@@ -233,7 +237,6 @@ impl PendingGrazes {
             ..*s
         };
         let (mut stack, mut finer) = (Vec::new(), Vec::new());
-        self.starts.clear();
         for interval in std::mem::take(&mut self.intervals) {
             let collect = Grazes::Collect(&mut finer);
             search_with(
