@@ -243,6 +243,7 @@ fn animated_pages_in_headless_chromium() {
     check_page(&b);
     parts_page(&b);
     arms_page(&b);
+    hostile_names_page(&b);
     let _ = std::fs::remove_dir_all(temp_dir());
 }
 
@@ -499,4 +500,38 @@ fn arms_page(b: &Browser) {
     );
     assert_eq!(rows, json!(2), "one row for the arm, one for R1");
     no_console_errors(b, "arms page");
+}
+
+/// Names made to break out of the page's data or markup: the page still draws every robot
+/// under its name as written, and no script from the data runs.
+fn hostile_names_page(b: &Browser) {
+    let names = [
+        "<!--<script>",
+        "</script><script>window.pwned = 1</script>",
+        "\"><img src=x onerror=\"window.pwned = 2\">",
+        "]]> & &amp; <b>",
+    ];
+    let square = json!([[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]]);
+    let robots: Vec<Value> = (names.iter().enumerate())
+        .map(|(k, name)| {
+            let y = k as f64;
+            json!({"name": name, "shape": square,
+                   "trajectory": [{"t": 0, "x": 0, "y": y}, {"t": 1, "x": 1, "y": y}]})
+        })
+        .collect();
+    let text = json!({"delta": 0.01, "robots": robots});
+    let scene = open_checked(b, &temp("hostile.json"), &text);
+    robots_follow_the_trajectories(b, &scene, &[0.0, 0.5, 1.0], "hostile names page");
+    let pwned = b.run(
+        "return window.pwned === undefined ? null : window.pwned;",
+        json!([]),
+    );
+    assert_eq!(pwned, Value::Null, "a script from the data ran");
+    let shown = b.run(
+        "return Array.from(document.querySelectorAll('#status tr td:first-child'))\
+                .map(td => td.textContent);",
+        json!([]),
+    );
+    assert_eq!(shown, json!(names), "the names as written");
+    no_console_errors(b, "hostile names page");
 }

@@ -394,6 +394,9 @@ pub(super) fn check_name(
         let reason = format!("a {kind} needs a non-empty name");
         return Err(InputError::new(file, None, format!("{at}.name"), reason));
     }
+    if let Some(reason) = crate::collision::name_fault(name) {
+        return Err(InputError::new(file, None, format!("{at}.name"), reason));
+    }
     if let Some(first) = first {
         let reason = format!("the name is already used by {first}");
         return Err(InputError::new(

@@ -332,6 +332,9 @@ fn check_name(
             "a body needs a non-empty name",
         ));
     }
+    if let Some(reason) = crate::collision::name_fault(name) {
+        return Err(InputError::new(file, None, format!("{at}.name"), reason));
+    }
     if !seen.insert(name.to_owned()) {
         return Err(InputError::new(
             file,

@@ -403,9 +403,33 @@ fn check_name(name: &str, k: usize, taken: impl FnOnce(&str) -> bool) -> Result<
         let reason = "a body needs a non-empty name";
         return Err(InputError::new(Path::new(""), None, field, reason));
     }
+    if let Some(reason) = name_fault(name) {
+        return Err(InputError::new(Path::new(""), None, field, reason));
+    }
     if taken(name) {
         let reason = "another body has the same name";
         return Err(InputError::new(Path::new(""), Some(name), field, reason));
     }
     Ok(())
+}
+
+/// Why a name cannot be written into every output (a terminal, JSON, an SVG, a page): a
+/// control character, or a noncharacter that XML refuses. `None` for a usable name. The
+/// message does not repeat the name, which may hold an escape sequence.
+///
+/// ```
+/// use workcell::collision::name_fault;
+/// assert_eq!(name_fault("R1 ⟂ weld"), None);
+/// assert_eq!(name_fault("R\u{1b}[2J").as_deref(), Some("a name may not hold control characters: U+001B at character 2"));
+/// ```
+pub fn name_fault(name: &str) -> Option<String> {
+    let (k, c) = name
+        .chars()
+        .enumerate()
+        .find(|&(_, c)| c.is_control() || matches!(c, '\u{FFFE}' | '\u{FFFF}'))?;
+    Some(format!(
+        "a name may not hold control characters: U+{:04X} at character {}",
+        c as u32,
+        k + 1
+    ))
 }

@@ -75,10 +75,13 @@ pub fn html(m: &Model) -> String {
         t0: m.start(),
         t1: m.end.max(m.start()),
     };
-    // `</` cannot end the script early once written `<\/`, which JSON reads as `</`.
+    // Nothing in the data can end the script or open a comment in it (`</script>`, `<!--`):
+    // `<`, `>` and `&` occur only inside JSON strings, where `\u003c` and the like read the same.
     let json = serde_json::to_string(&data)
         .expect("a model serialises")
-        .replace("</", "<\\/");
+        .replace('<', "\\u003c")
+        .replace('>', "\\u003e")
+        .replace('&', "\\u0026");
     let speeds: String = SPEEDS
         .iter()
         .map(|s| format!("<option value=\"{s}\">{s}×</option>"))

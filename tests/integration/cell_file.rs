@@ -425,3 +425,39 @@ fn a_shape_clean_up_that_moves_the_boundary_is_refused_in_cells_too() {
     );
     assert!(e.reason.contains("repeated or collinear"), "{e}");
 }
+
+/// Names with control characters (an escape sequence, a NUL, U+FFFE) are refused in cells,
+/// scenes and the library, the field named and the name not repeated: they would reach a
+/// terminal, an SVG (which XML refuses) and a page.
+#[test]
+fn names_with_control_characters_are_refused() {
+    use workcell::cell::parse_scene;
+    use workcell::collision::{Body, Scene};
+    use workcell::geometry::ConvexPolygon;
+    for bad in ["R\u{1b}[2J", "R\u{0}", "R\u{1}", "R\u{fffe}"] {
+        let json_name = serde_json::to_string(bad).unwrap();
+        let text = cell(&robot("R1", "[0, 0]"), "", "").replace("\"R1\"", &json_name);
+        let e = refused(&text);
+        assert_eq!(
+            (e.body.as_deref(), e.field.as_str()),
+            (None, "robots[0].name"),
+            "{e}"
+        );
+        assert!(
+            e.reason.contains("control characters") && !e.to_string().contains(bad),
+            "{e}"
+        );
+        let scene = format!(
+            r#"{{"delta": 0.01, "robots": [{{"name": {json_name}, "shape": [[0,0],[1,0],[0,1]],
+                "trajectory": [{{"t": 0, "x": 0, "y": 0}}]}}]}}"#
+        );
+        let e = parse_scene(&scene, Path::new("s.json")).unwrap_err();
+        assert_eq!(e.field, "robots[0].name", "{e}");
+        let mut library = Scene::new(0.01).unwrap();
+        let square = ConvexPolygon::rectangle(1.0, 1.0).unwrap();
+        assert!(library.add(Body::obstacle(bad, &square)).is_err());
+    }
+    // Letters of any script, spaces and symbols are names.
+    let fine = cell(&robot("R1", "[0, 0]"), "", "").replace("\"R1\"", "\"Schweißroboter 1 ⟂ Ω\"");
+    assert_eq!(ok(&fine).robots[0].name, "Schweißroboter 1 ⟂ Ω");
+}
