@@ -59,9 +59,10 @@ pub struct FeedbackArgs {
     remedies: Option<Vec<String>>,
 }
 
+/// A positive, finite number of seconds; one beyond what a `Duration` holds is no limit.
 fn positive_seconds(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 && v < 1e9 => Ok(v),
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("expected a positive number of seconds, got `{s}`")),
     }
 }
@@ -73,7 +74,8 @@ impl FeedbackArgs {
             _ => Feedback::Search,
         };
         opts.search.max_nodes = self.search_nodes as usize;
-        opts.search.time_limit = std::time::Duration::from_secs_f64(self.search_time);
+        opts.search.time_limit = std::time::Duration::try_from_secs_f64(self.search_time)
+            .unwrap_or(std::time::Duration::MAX);
         if let Some(names) = &self.remedies {
             opts.search.remedies = Remedies::of_names(names.iter().map(String::as_str))
                 .expect("clap accepts only the remedies' names");

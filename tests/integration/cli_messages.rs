@@ -68,6 +68,24 @@ fn negative_numbers_get_our_message_not_clap_tip() {
     }
 }
 
+/// A time limit of any positive size is taken (beyond what a duration holds, it is no limit),
+/// not refused by a hidden cap.
+#[test]
+fn huge_time_limits_are_taken() {
+    let cell = crate::common::shipped("feedback-cell.json");
+    for limit in ["1e9", "1e300"] {
+        for option in ["--search-time", "--time-limit"] {
+            let o = workcell(&["solve", &cell, option, limit]);
+            assert_eq!(
+                o.status.code(),
+                Some(0),
+                "{option} {limit}: {}",
+                text(&o.stderr)
+            );
+        }
+    }
+}
+
 #[test]
 fn zero_counts_say_at_least_one() {
     let cases: [&[&str]; 3] = [
