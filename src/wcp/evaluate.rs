@@ -259,10 +259,64 @@ fn precision_error(
             )
         }
         Activity::Move { .. } | Activity::Pause { .. } | Activity::Park { .. } | Activity::Done => {
+            if let Some((field, reason)) = leg_blamed(sequences, r, blamed, &what_lost) {
+                return InputError::new(sequences_file, Some(name), field, reason);
+            }
             let reason = limits_reason(cell, r, blamed, lost, &resolution, &what_lost);
             cell.error(Some(name), format!("robots[{r}]"), reason)
         }
     }
+}
+
+/// When the move that stretched the axis is a leg the result file changed, the piece of it
+/// to blame, as a field of that file and a reason: a hold too short to keep its length where
+/// the leg starts, else the piece that lasts longest (a hold, or a motion by its slowing
+/// factor times the planned move's duration).
+fn leg_blamed(
+    sequences: &Sequences,
+    r: usize,
+    blamed: Stretch,
+    what_lost: &str,
+) -> Option<(String, String)> {
+    use crate::cell::PieceSpec;
+    let k = (sequences.legs.iter()).position(|l| l.robot == r && l.leg == blamed.step)?;
+    let pieces = &sequences.legs[k].pieces;
+    let field = |i: usize| match pieces[i] {
+        PieceSpec::Hold { .. } => "hold",
+        PieceSpec::Go { .. } => "go.scale",
+    };
+    let start = blamed.start;
+    let too_short = (0..pieces.len()).find(|&i| {
+        matches!(pieces[i], PieceSpec::Hold { duration, .. }
+            if duration > 0.0 && start + duration == start)
+    });
+    if let Some(i) = too_short {
+        let PieceSpec::Hold { duration, .. } = pieces[i] else {
+            unreachable!("a hold")
+        };
+        let reason = format!(
+            "this hold of {} is too short for the time axis: at t = {}, where f64 spaces times \
+             {} apart, it cannot keep its length; give 0 for no hold",
+            number(duration),
+            number(start),
+            number(start.abs() * f64::EPSILON)
+        );
+        return Some((format!("legs[{k}].pieces[{i}].hold"), reason));
+    }
+    let lasts = |i: &usize| match pieces[*i] {
+        PieceSpec::Hold { duration, .. } => duration,
+        PieceSpec::Go { scale, .. } => scale * blamed.length,
+    };
+    let i = (0..pieces.len()).max_by(|a, b| lasts(a).total_cmp(&lasts(b)))?;
+    let (what, value) = match pieces[i] {
+        PieceSpec::Hold { duration, .. } => ("hold", duration),
+        PieceSpec::Go { scale, .. } => ("slowing factor", scale),
+    };
+    let reason = format!(
+        "this {what} of {} stretches the time axis: {what_lost}",
+        number(value)
+    );
+    Some((format!("legs[{k}].pieces[{i}].{}", field(i)), reason))
 }
 
 /// The index of the longest of the waits given to robot `r` before move `step` (0 if none).

@@ -551,3 +551,57 @@ fn an_output_path_that_is_an_input_is_refused() {
     );
     assert!(!both.exists());
 }
+
+/// `evaluate` blames a result's legs for what they hold: a hold so long that the moves after
+/// it cannot keep their length, a hold too short to keep its own, a slowing factor that
+/// stretches the time axis; each names the result file and the piece's field, not the cell.
+#[test]
+fn evaluate_names_the_piece_of_a_leg_that_breaks_the_time_axis() {
+    let cell = shipped("feedback-cell.json");
+    let solved = workcell(&["solve", &cell, "--json"]);
+    let result = json(&solved);
+    let legs = result["legs"].as_array().expect("legs");
+    let (k, i) = (legs.iter().enumerate())
+        .find_map(|(k, l)| {
+            let pieces = l["pieces"].as_array()?;
+            let hold = pieces.iter().position(|p| p.get("hold").is_some())?;
+            let go = pieces.iter().position(|p| p.get("go").is_some())?;
+            Some((k, (hold, go)))
+        })
+        .expect("a leg with a hold and a motion");
+    let dir = temp_dir_made("solve", "legs_blamed");
+    let cases = [
+        (
+            format!("/legs/{k}/pieces/{}/hold", i.0),
+            1e17,
+            format!("legs[{k}].pieces[{}].hold", i.0),
+            "stretches",
+        ),
+        (
+            format!("/legs/{k}/pieces/{}/hold", i.0),
+            1e-300,
+            format!("legs[{k}].pieces[{}].hold", i.0),
+            "too short",
+        ),
+        (
+            format!("/legs/{k}/pieces/{}/go/scale", i.1),
+            1e300,
+            format!("legs[{k}].pieces[{}].go.scale", i.1),
+            "stretches",
+        ),
+    ];
+    for (n, (pointer, value, field, says)) in cases.into_iter().enumerate() {
+        let mut bad = result.clone();
+        *bad.pointer_mut(&pointer).unwrap() = serde_json::json!(value);
+        let file = dir.join(format!("bad-{n}.json"));
+        std::fs::write(&file, bad.to_string()).unwrap();
+        let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{pointer} = {value}");
+        let err = text(&o.stderr);
+        assert!(
+            err.contains(file.to_str().unwrap()) && err.contains(&format!("`{field}`")),
+            "{err}"
+        );
+        assert!(err.contains(says), "{err}");
+    }
+}
