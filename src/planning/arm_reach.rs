@@ -151,12 +151,13 @@ impl ArmModel {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::geometry::{ConvexPolygon, Vec2};
     use crate::planning::joint_move;
 
-    fn bar(l: f64) -> Parts {
+    /// A link `l` long and 0.1 wide, its ends rounded off 0.05 beyond its joints.
+    pub(in crate::planning) fn bar(l: f64) -> Parts {
         let corners = [
             [-0.05, -0.05],
             [l + 0.05, -0.05],

@@ -257,20 +257,12 @@ fn shortened(path: Vec<Vec<f64>>, clear: &dyn Fn(&[f64], &[f64]) -> bool) -> Vec
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{ConvexPolygon, Parts};
+    use crate::geometry::ConvexPolygon;
     use crate::motion::Pose;
+    use crate::planning::arm_reach::tests::bar;
     use crate::planning::JointLimits;
 
     fn arm() -> ArmModel {
-        let bar = |l: f64| {
-            let corners = [
-                [-0.05, -0.05],
-                [l + 0.05, -0.05],
-                [l + 0.05, 0.05],
-                [-0.05, 0.05],
-            ];
-            Parts::new(vec![ConvexPolygon::from_vertices(&corners).unwrap()]).unwrap()
-        };
         ArmModel {
             name: "A1".into(),
             base: Pose::new(0.0, 0.0, 0.0),
