@@ -338,6 +338,18 @@ mod tests {
         );
     }
 
+    /// A link of length 0 (a turntable under the arm) leaves the other to do the reaching.
+    #[test]
+    fn a_link_of_length_zero_reaches_with_the_other() {
+        let base = Pose::new(0.0, 0.0, 0.0);
+        let lengths = [0.0, 1.0];
+        let g = goal(0.6, 0.8, None);
+        let found = inverse_kinematics(base, &lengths, &[None, None], g, &IkSettings::default());
+        let found = found.expect("the tool's circle holds the goal");
+        assert!(!found.is_empty());
+        all_reach(base, &lengths, g, &found);
+    }
+
     #[test]
     fn limits_keep_branches_and_turns_that_fit() {
         let base = Pose::new(0.0, 0.0, 0.0);
