@@ -1,9 +1,10 @@
 //! Building a cell in code: the checks of a cell file, field by field, with the errors
 //! naming the field as the file would (`robots[0].max_speed`), and no file.
 
+use super::arm_file::ArmAt;
 use super::cell_checks::check_geometry;
 use super::cell_file::{allowed_robots, check_duration, check_limits, check_name, owner};
-use super::model::{Cell, CellObstacle, CellRobot, Task};
+use super::model::{Cell, CellObstacle, CellRobot, RigidRobot, RobotKind, Task};
 use super::InputError;
 use crate::collision::check_delta;
 use crate::geometry::{ConvexPolygon, Parts};
@@ -15,22 +16,21 @@ impl Cell {
     /// finite). Add robots, obstacles and tasks, then [`Cell::validate`] before solving.
     ///
     /// ```
-    /// use workcell::cell::{Cell, CellObstacle, CellRobot};
+    /// use workcell::cell::{Cell, CellObstacle, CellRobot, RigidRobot};
     /// use workcell::geometry::{ConvexPolygon, Vec2};
     /// use workcell::motion::Pose;
     /// use workcell::wcp::{prepare, solve, SolveOptions};
     ///
     /// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
     /// let mut cell = Cell::new(0.01)?;
-    /// cell.add_robot(CellRobot {
-    ///     name: "R1".into(),
+    /// cell.add_robot(CellRobot::rigid("R1", RigidRobot {
     ///     shape: square.clone(),
     ///     parts: None,
     ///     home: Pose::new(0.0, 0.0, 0.0),
     ///     max_speed: 1.0,
     ///     max_accel: 2.0,
     ///     max_turn_rate: 1.0,
-    /// })?
+    /// }))?
     /// .add_obstacle(CellObstacle { name: "post".into(), shape: square.translated(&Vec2::new(3.0, 3.0)), parts: None })?
     /// .add_task("weld", Pose::new(4.0, 0.0, 0.0), 1.5, None)?
     /// .validate()?;
@@ -53,23 +53,23 @@ impl Cell {
     }
 
     /// Adds a robot: its name new and non-empty, its home finite, its limits positive and
-    /// finite. A robot with `parts` gets their convex hull as its `shape` (a convex union, as
-    /// its one shape).
+    /// finite. A rigid robot with `parts` gets their convex hull as its `shape` (a convex
+    /// union, as its one shape); an arm is checked as a file's arm is (one home angle and
+    /// one limit per joint, home within the joint limits).
     ///
     /// ```
-    /// use workcell::cell::{Cell, CellRobot};
+    /// use workcell::cell::{Cell, CellRobot, RigidRobot};
     /// use workcell::geometry::ConvexPolygon;
     /// use workcell::motion::Pose;
     ///
-    /// let robot = CellRobot {
-    ///     name: "R1".into(),
+    /// let robot = CellRobot::rigid("R1", RigidRobot {
     ///     shape: ConvexPolygon::rectangle(1.0, 1.0)?,
     ///     parts: None,
     ///     home: Pose::new(0.0, 0.0, 0.0),
     ///     max_speed: 1.0,
     ///     max_accel: 0.0,
     ///     max_turn_rate: 1.0,
-    /// };
+    /// });
     /// let e = Cell::new(0.01)?.add_robot(robot).unwrap_err();
     /// assert_eq!((e.body.as_deref(), e.field.as_str()), (Some("R1"), "robots[0].max_accel"));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -77,14 +77,28 @@ impl Cell {
     pub fn add_robot(&mut self, robot: CellRobot) -> Result<&mut Cell, InputError> {
         let at = format!("robots[{}]", self.robots.len());
         self.check_new_name(&robot.name, &at, "robot")?;
-        self.check_pose(&robot.name, &format!("{at}.home"), &robot.home)?;
-        check_limits(&self.file, &at, &robot)?;
-        let (shape, parts) = hull_and_parts(robot.shape, robot.parts);
-        self.robots.push(CellRobot {
-            shape,
-            parts,
-            ..robot
-        });
+        let kind = match robot.kind {
+            RobotKind::Rigid(rigid) => {
+                self.check_pose(&robot.name, &format!("{at}.home"), &rigid.home)?;
+                check_limits(&self.file, &at, &robot.name, &rigid)?;
+                let (shape, parts) = hull_and_parts(rigid.shape, rigid.parts);
+                RobotKind::Rigid(RigidRobot {
+                    shape,
+                    parts,
+                    ..rigid
+                })
+            }
+            RobotKind::Arm(arm) => {
+                let place = ArmAt {
+                    file: &self.file,
+                    name: &robot.name,
+                    at: &at,
+                };
+                place.check(&arm)?;
+                RobotKind::Arm(arm)
+            }
+        };
+        self.robots.push(CellRobot { kind, ..robot });
         Ok(self)
     }
 
@@ -144,6 +158,7 @@ impl Cell {
         self.tasks.push(Task {
             name: name.to_owned(),
             at,
+            free_angle: false,
             duration,
             robots,
         });
@@ -156,22 +171,21 @@ impl Cell {
     /// length). [`crate::wcp::prepare`] expects a cell that passes.
     ///
     /// ```
-    /// use workcell::cell::{Cell, CellObstacle, CellRobot};
+    /// use workcell::cell::{Cell, CellObstacle, CellRobot, RigidRobot};
     /// use workcell::geometry::{ConvexPolygon, Vec2};
     /// use workcell::motion::Pose;
     ///
     /// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
     /// let mut cell = Cell::new(0.01)?;
     /// assert_eq!(cell.validate().unwrap_err().field, "robots");
-    /// cell.add_robot(CellRobot {
-    ///     name: "R1".into(),
+    /// cell.add_robot(CellRobot::rigid("R1", RigidRobot {
     ///     shape: square.clone(),
     ///     parts: None,
     ///     home: Pose::new(0.0, 0.0, 0.0),
     ///     max_speed: 1.0,
     ///     max_accel: 2.0,
     ///     max_turn_rate: 1.0,
-    /// })?;
+    /// }))?;
     /// // A post over R1's home.
     /// cell.add_obstacle(CellObstacle { name: "post".into(), shape: square.translated(&Vec2::new(0.5, 0.0)), parts: None })?;
     /// assert_eq!(cell.validate().unwrap_err().field, "robots[0].home");

@@ -2,7 +2,7 @@
 //! that keep the boundary, homes clear of obstacles and of each other, tasks outside obstacles.
 
 use super::time_axis::check_time_axis;
-use super::{Cell, CellObstacle, InputError, MAX_COORDINATE_OVER_DELTA};
+use super::{Cell, CellObstacle, InputError, RobotKind, MAX_COORDINATE_OVER_DELTA};
 use crate::collision::check_shape_repairs;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::motion::Pose;
@@ -26,18 +26,42 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
         let err = |field: &str, reason: String| {
             cell.error(Some(&r.name), format!("{at}.{field}"), reason)
         };
-        for (field, piece) in piece_fields(&at, r.pieces(), r.parts.is_some()) {
-            check_shape_repairs(piece, &r.name, &field, delta, file)?;
-        }
-        let radius = r.shape.radius();
-        if radius > limit {
-            return Err(err("shape", too_large(radius, delta)));
-        }
-        if r.home.pos.amax() > limit {
-            return Err(err("home", too_large(r.home.pos.amax(), delta)));
-        }
-        if (radius * r.home.theta).abs() > limit {
-            return Err(err("home", angle_too_large(r.home.theta, radius, delta)));
+        match &r.kind {
+            RobotKind::Rigid(rigid) => {
+                for (field, piece) in piece_fields(&at, rigid.pieces(), rigid.parts.is_some()) {
+                    check_shape_repairs(piece, &r.name, &field, delta, file)?;
+                }
+                let radius = rigid.shape.radius();
+                if radius > limit {
+                    return Err(err("shape", too_large(radius, delta)));
+                }
+                let home = rigid.home;
+                if home.pos.amax() > limit {
+                    return Err(err("home", too_large(home.pos.amax(), delta)));
+                }
+                if (radius * home.theta).abs() > limit {
+                    return Err(err("home", angle_too_large(home.theta, radius, delta)));
+                }
+            }
+            RobotKind::Arm(arm) => {
+                for (i, (_, body)) in arm.links.iter().enumerate() {
+                    let link = format!("{at}.links[{i}]");
+                    for (field, piece) in piece_fields(&link, body.parts(), body.len() > 1) {
+                        check_shape_repairs(piece, &r.name, &field, delta, file)?;
+                    }
+                }
+                let rim = r.rim();
+                if arm.base.pos.amax() + rim > limit {
+                    return Err(err("base", too_large(arm.base.pos.amax() + rim, delta)));
+                }
+                let angles = std::iter::once(("base", arm.base.theta))
+                    .chain(arm.home.iter().map(|&q| ("home", q)));
+                for (field, angle) in angles {
+                    if (rim * angle).abs() > limit {
+                        return Err(err(field, angle_too_large(angle, rim, delta)));
+                    }
+                }
+            }
         }
     }
     for (k, o) in cell.obstacles.iter().enumerate() {
@@ -64,7 +88,7 @@ fn check_extents(cell: &Cell) -> Result<(), InputError> {
 fn check_homes(cell: &Cell) -> Result<(), InputError> {
     let delta = cell.delta;
     for (k, r) in cell.robots.iter().enumerate() {
-        if let Some((o, d)) = nearest_obstacle(r.pieces(), r.home, &cell.obstacles, delta) {
+        if let Some((o, d)) = nearest_obstacle(&r.at_home(), &cell.obstacles, delta) {
             let reason = format!(
                 "the robot at its home is {d:.3e} from obstacle \"{}\", closer than delta = {delta}",
                 cell.obstacles[o].name
@@ -74,7 +98,7 @@ fn check_homes(cell: &Cell) -> Result<(), InputError> {
     }
     for (k, r) in cell.robots.iter().enumerate() {
         for other in &cell.robots[..k] {
-            let d = pieces_distance((r.pieces(), r.home), (other.pieces(), other.home));
+            let d = placed_distance(&r.at_home(), &other.at_home());
             if d < delta {
                 let reason = format!(
                     "at home the robot is {d:.3e} from robot \"{}\" at its home, closer than delta = {delta}",
@@ -85,6 +109,18 @@ fn check_homes(cell: &Cell) -> Result<(), InputError> {
         }
     }
     Ok(())
+}
+
+/// The distance between two bodies, each convex pieces placed at poses (an arm's links
+/// each at its own): the least over pairs of pieces.
+fn placed_distance(a: &[(&[ConvexPolygon], Pose)], b: &[(&[ConvexPolygon], Pose)]) -> f64 {
+    let mut least = f64::INFINITY;
+    for &x in a {
+        for &y in b {
+            least = least.min(pieces_distance(x, y));
+        }
+    }
+    least
 }
 
 /// Each convex piece of a body with the field that names it: `shape`, or `parts[i]`.
@@ -143,7 +179,7 @@ fn check_tasks(cell: &Cell) -> Result<(), InputError> {
         let rim = t
             .robots
             .iter()
-            .map(|&r| cell.robots[r].shape.radius())
+            .map(|&r| cell.robots[r].rim())
             .fold(0.0, f64::max);
         if (rim * pose.theta).abs() > limit {
             return Err(err(angle_too_large(pose.theta, rim, delta)));
@@ -175,16 +211,16 @@ fn contains(shape: &ConvexPolygon, p: &Vec2) -> bool {
     (0..n).all(|i| shape.normals()[i].dot(&(p - shape.vertices()[i])) < 0.0)
 }
 
-/// The first obstacle closer than δ to the robot placed at `pose`, with its distance.
+/// The first obstacle closer than δ to the robot's pieces placed as given, with its
+/// distance.
 fn nearest_obstacle(
-    pieces: &[ConvexPolygon],
-    pose: Pose,
+    placed: &[(&[ConvexPolygon], Pose)],
     obstacles: &[CellObstacle],
     delta: f64,
 ) -> Option<(usize, f64)> {
     let origin = Pose::new(0.0, 0.0, 0.0);
     obstacles.iter().enumerate().find_map(|(k, o)| {
-        let d = pieces_distance((pieces, pose), (o.pieces(), origin));
+        let d = placed_distance(placed, &[(o.pieces(), origin)]);
         (d < delta).then_some((k, d))
     })
 }

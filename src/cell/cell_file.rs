@@ -1,13 +1,14 @@
 //! Reading a cell file (contract section 3): robots with their limits, obstacles and tasks.
 
+use super::arm_file::{ArmAt, PerJoint, RawLink};
 use super::body_shape::BodyShape;
 use super::cell_checks::check_geometry;
-use super::model::{Cell, CellObstacle, CellRobot, Task};
+use super::model::{ArmRobot, Cell, CellObstacle, CellRobot, RigidRobot, Task};
 use super::object_only::object_only;
 use super::reading::{delta, document, read_file, Point};
 use super::InputError;
 use crate::geometry::{ConvexPolygon, Parts, Vec2};
-use crate::motion::Pose;
+use crate::motion::{JointLimits, Pose};
 use serde::Deserialize;
 use std::collections::HashMap;
 use std::path::Path;
@@ -42,11 +43,17 @@ struct RawRobot {
     max_accel: Option<f64>,
     #[serde(default)]
     max_turn_rate: Option<f64>,
-    /// An arm's (contract section 7), refused by name until the solver schedules arms.
+    /// An arm's (contract section 7).
     #[serde(default)]
-    base: Option<serde_json::Value>,
+    base: Option<Vec<f64>>,
     #[serde(default)]
-    links: Option<serde_json::Value>,
+    links: Option<Vec<RawLink>>,
+    #[serde(default)]
+    joint_limits: Option<Vec<Option<[f64; 2]>>>,
+    #[serde(default)]
+    max_joint_speed: Option<PerJoint>,
+    #[serde(default)]
+    max_joint_accel: Option<PerJoint>,
 }
 
 #[derive(Deserialize)]
@@ -77,7 +84,8 @@ object_only!(
 );
 object_only!(
     RawRobot,
-    "a robot: an object with `name`, `shape`, `home`, `max_speed`, `max_accel` and `max_turn_rate`"
+    "a robot: an object with `name`, `shape`, `home`, `max_speed`, `max_accel` and `max_turn_rate` \
+     (or, for an arm, `name`, `base`, `links`, `home`, `max_joint_speed` and `max_joint_accel`)"
 );
 object_only!(
     RawObstacle,
@@ -191,10 +199,26 @@ fn read_robot(
     let err = |field: String, reason: String| InputError::new(file, Some(&r.name), field, reason);
     names.claim(file, &r.name, &at, "robot")?;
     if r.links.is_some() || r.base.is_some() {
-        let field = if r.links.is_some() { "links" } else { "base" };
-        let reason = "an arm (contract section 7): `workcell solve` and `evaluate` do not \
-                      schedule arms yet; `workcell check` checks an arm's trajectory (section 6)";
-        return Err(err(format!("{at}.{field}"), reason.to_owned()));
+        let arm = read_arm(
+            ArmAt {
+                file,
+                name: &r.name,
+                at: &at,
+            },
+            r,
+            warnings,
+        )?;
+        return Ok(CellRobot::arm(r.name.clone(), arm));
+    }
+    let arm_keys = [
+        ("joint_limits", r.joint_limits.is_some()),
+        ("max_joint_speed", r.max_joint_speed.is_some()),
+        ("max_joint_accel", r.max_joint_accel.is_some()),
+    ];
+    if let Some((key, _)) = arm_keys.iter().find(|(_, given)| *given) {
+        let reason =
+            format!("`{key}` belongs to an arm (with `base` and `links`), not to a rigid robot");
+        return Err(err(format!("{at}.{key}"), reason));
     }
     let limit = |value: Option<f64>, field: &str| {
         value.ok_or_else(|| err(format!("{at}.{field}"), format!("missing field `{field}`")))
@@ -208,8 +232,7 @@ fn read_robot(
         warnings,
     )?;
     let home = pose(&r.home).map_err(|reason| err(format!("{at}.home"), reason))?;
-    let robot = CellRobot {
-        name: r.name.clone(),
+    let robot = RigidRobot {
         shape,
         parts,
         home,
@@ -217,12 +240,61 @@ fn read_robot(
         max_accel: limit(r.max_accel, "max_accel")?,
         max_turn_rate: limit(r.max_turn_rate, "max_turn_rate")?,
     };
-    check_limits(file, &at, &robot)?;
-    Ok(robot)
+    check_limits(file, &at, &r.name, &robot)?;
+    Ok(CellRobot::rigid(r.name.clone(), robot))
+}
+
+/// An arm of a cell (contract section 7), every fault named by its field.
+fn read_arm(
+    place: ArmAt,
+    r: &RawRobot,
+    warnings: &mut Vec<String>,
+) -> Result<ArmRobot, InputError> {
+    let at = place.at;
+    place.refuse_rigid_keys(&[
+        ("shape", r.shape.is_some()),
+        ("parts", r.parts.is_some()),
+        ("outline", r.outline.is_some()),
+        ("max_speed", r.max_speed.is_some()),
+        ("max_accel", r.max_accel.is_some()),
+        ("max_turn_rate", r.max_turn_rate.is_some()),
+    ])?;
+    let (base, links) = place.frame(r.base.as_deref(), r.links.as_deref(), warnings)?;
+    let joints = links.len();
+    if r.home.len() != joints {
+        let reason = format!(
+            "{} home angles for an arm of {joints} links: one angle per joint",
+            r.home.len()
+        );
+        return Err(InputError::new(
+            place.file,
+            Some(place.name),
+            format!("{at}.home"),
+            reason,
+        ));
+    }
+    let limits = JointLimits {
+        range: place.ranges(r.joint_limits.as_deref(), joints)?,
+        max_speed: place.per_joint("max_joint_speed", r.max_joint_speed.as_ref(), joints)?,
+        max_accel: place.per_joint("max_joint_accel", r.max_joint_accel.as_ref(), joints)?,
+    };
+    let arm = ArmRobot {
+        base,
+        links,
+        home: r.home.clone(),
+        limits,
+    };
+    place.check(&arm)?;
+    Ok(arm)
 }
 
 /// The robot's limits positive and finite: a planner cannot time a move without them.
-pub(super) fn check_limits(file: &Path, at: &str, r: &CellRobot) -> Result<(), InputError> {
+pub(super) fn check_limits(
+    file: &Path,
+    at: &str,
+    name: &str,
+    r: &RigidRobot,
+) -> Result<(), InputError> {
     for (field, value) in [
         ("max_speed", r.max_speed),
         ("max_accel", r.max_accel),
@@ -232,7 +304,7 @@ pub(super) fn check_limits(file: &Path, at: &str, r: &CellRobot) -> Result<(), I
             let reason = format!("must be a positive number, got {value}");
             return Err(InputError::new(
                 file,
-                Some(&r.name),
+                Some(name),
                 format!("{at}.{field}"),
                 reason,
             ));
@@ -308,6 +380,7 @@ fn read_task(
     Ok(Task {
         name: t.name.clone(),
         at: pose,
+        free_angle: t.at.len() == 2,
         duration: t.duration,
         robots: allowed,
     })

@@ -1,6 +1,7 @@
 //! The model's files: reading scenes (the contract's section 1) and cells (section 3) with errors that name the
 //! file, the body and the field.
 
+mod arm_file;
 mod body_shape;
 mod cell_build;
 mod cell_checks;
@@ -18,7 +19,7 @@ mod time_axis;
 pub use crate::error::InputError;
 pub use cell_file::{load_cell, parse_cell, LoadedCell};
 pub use legs_file::{parse_legs, LegSpec, PieceSpec, PrimitiveSpec};
-pub use model::{Cell, CellObstacle, CellRobot, Task};
+pub use model::{ArmRobot, Cell, CellObstacle, CellRobot, RigidRobot, RobotKind, Task};
 // Whether f64 can check a scene is the checker's to say; the readers ask it, and these
 // paths stay where a user of the files finds them.
 pub use crate::collision::{

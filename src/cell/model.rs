@@ -4,14 +4,31 @@
 use super::InputError;
 use crate::collision::Body;
 use crate::geometry::{ConvexPolygon, Parts};
-use crate::motion::{Pose, Trajectory};
+use crate::motion::{forward_kinematics, JointLimits, Pose, Trajectory};
 use std::path::PathBuf;
 
-/// A robot of the cell: its shape, home and limits.
+/// A robot of the cell: a rigid body that glides (contract section 3) or a planar arm
+/// (section 7).
 #[derive(Clone, Debug, PartialEq)]
 pub struct CellRobot {
     /// Name, unique among robots, obstacles and tasks.
     pub name: String,
+    /// What kind of robot, with its shape, home and limits.
+    pub kind: RobotKind,
+}
+
+/// The two kinds of robot a cell holds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RobotKind {
+    /// A rigid body whose pose is planned in the plane.
+    Rigid(RigidRobot),
+    /// A planar arm of revolute joints, planned in its joint space.
+    Arm(ArmRobot),
+}
+
+/// A rigid robot: its shape, home and limits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidRobot {
     /// Shape in the body frame (origin: the rotation centre G): the convex hull of `parts`
     /// when the robot is made of parts.
     pub shape: ConvexPolygon,
@@ -28,6 +45,20 @@ pub struct CellRobot {
     pub max_turn_rate: f64,
 }
 
+/// A planar arm of revolute joints (contract section 7): its base, links, home angles and
+/// joint limits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArmRobot {
+    /// The pose of the fixed base.
+    pub base: Pose,
+    /// Each link's length and body, in the link's frame (contract section 6).
+    pub links: Vec<(f64, Parts)>,
+    /// The joint angles where the arm starts and ends, one per link.
+    pub home: Vec<f64>,
+    /// Joint ranges, speeds and accelerations, one entry per link.
+    pub limits: JointLimits,
+}
+
 /// A fixed obstacle in world coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CellObstacle {
@@ -42,33 +73,154 @@ pub struct CellObstacle {
 }
 
 impl CellRobot {
+    /// A rigid robot named `name`.
+    ///
+    /// ```
+    /// use workcell::cell::{CellRobot, RigidRobot};
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::Pose;
+    /// let shape = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let home = Pose::new(0.0, 0.0, 0.0);
+    /// let r = CellRobot::rigid("R1", RigidRobot { shape, parts: None, home, max_speed: 1.0, max_accel: 2.0, max_turn_rate: 1.0 });
+    /// assert_eq!(r.as_rigid().map(|b| b.home), Some(home));
+    /// assert!(r.as_arm().is_none());
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn rigid(name: impl Into<String>, robot: RigidRobot) -> CellRobot {
+        CellRobot {
+            name: name.into(),
+            kind: RobotKind::Rigid(robot),
+        }
+    }
+
+    /// An arm named `name`.
+    ///
+    /// ```
+    /// use workcell::cell::{ArmRobot, CellRobot};
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, Pose};
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.1, -0.1], [1.1, -0.1], [1.1, 0.1], [-0.1, 0.1]])?])?;
+    /// let limits = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![2.0] };
+    /// let a = CellRobot::arm("A1", ArmRobot { base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar)], home: vec![0.0], limits });
+    /// assert_eq!(a.as_arm().map(|arm| arm.home.len()), Some(1));
+    /// assert!(a.as_rigid().is_none());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn arm(name: impl Into<String>, arm: ArmRobot) -> CellRobot {
+        CellRobot {
+            name: name.into(),
+            kind: RobotKind::Arm(arm),
+        }
+    }
+
+    /// The robot's convex pieces placed as at home: its body at its home pose, or each
+    /// link of an arm at its home joint angles.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// let r1 = cell.rigid(0);
+    /// assert_eq!(cell.robots[0].at_home(), [(r1.pieces(), r1.home)]);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn at_home(&self) -> Vec<(&[ConvexPolygon], Pose)> {
+        match &self.kind {
+            RobotKind::Rigid(r) => vec![(r.pieces(), r.home)],
+            RobotKind::Arm(a) => {
+                let lengths: Vec<f64> = a.links.iter().map(|l| l.0).collect();
+                (a.links.iter().enumerate())
+                    .map(|(k, (_, body))| {
+                        let pose = forward_kinematics(a.base, &lengths, &a.home, k);
+                        (body.parts(), pose)
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// How far a point of the robot's body may lie from a centre it turns about, where an
+    /// angle's rounding moves it most: the radius of a rigid robot; for an arm, the sum of
+    /// its link lengths and its largest link's radius (a joint turns all links after it).
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// assert_eq!(cell.robots[0].rim(), cell.rigid(0).shape.radius());
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn rim(&self) -> f64 {
+        match &self.kind {
+            RobotKind::Rigid(r) => r.shape.radius(),
+            RobotKind::Arm(a) => {
+                let lengths: f64 = a.links.iter().map(|l| l.0).sum();
+                let radius =
+                    (a.links.iter().map(|(_, body)| body.hull().radius())).fold(0.0, f64::max);
+                lengths + radius
+            }
+        }
+    }
+
+    /// The rigid robot, `None` for an arm.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// assert!(cell.robots.iter().all(|r| r.as_rigid().is_some()));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn as_rigid(&self) -> Option<&RigidRobot> {
+        match &self.kind {
+            RobotKind::Rigid(r) => Some(r),
+            RobotKind::Arm(_) => None,
+        }
+    }
+
+    /// The arm, `None` for a rigid robot.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// assert!(cell.robots.iter().all(|r| r.as_arm().is_none()));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn as_arm(&self) -> Option<&ArmRobot> {
+        match &self.kind {
+            RobotKind::Arm(a) => Some(a),
+            RobotKind::Rigid(_) => None,
+        }
+    }
+}
+
+impl RigidRobot {
     /// The robot's convex pieces, whose union it is: its parts, or its one shape.
     ///
     /// ```
     /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
     /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
-    /// assert_eq!(cell.robots[0].pieces(), [cell.robots[0].shape.clone()]);
+    /// let r1 = cell.rigid(0);
+    /// assert_eq!(r1.pieces(), [r1.shape.clone()]);
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn pieces(&self) -> &[ConvexPolygon] {
         pieces(&self.shape, &self.parts)
     }
 
-    /// The robot as a checker body moving along `trajectory` (with its parts).
+    /// The robot, named `name`, as a checker body moving along `trajectory` (with its parts).
     ///
     /// ```
     /// use workcell::motion::{Sample, Trajectory};
     /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
-    /// let robot = &workcell::cell::load_cell(path.as_ref())?.cell.robots[0];
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// let robot = cell.rigid(0);
     /// let still = Trajectory::new(vec![Sample::at(0.0, robot.home)])?;
-    /// let body = robot.body(still);
-    /// assert_eq!((body.name.as_str(), &body.shape), (robot.name.as_str(), &robot.shape));
+    /// let body = robot.body("R1", still);
+    /// assert_eq!((body.name.as_str(), &body.shape), ("R1", &robot.shape));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn body(&self, trajectory: Trajectory) -> Body {
+    pub fn body(&self, name: &str, trajectory: Trajectory) -> Body {
         match &self.parts {
-            Some(parts) => Body::robot_of_parts(self.name.clone(), parts.clone(), trajectory),
-            None => Body::robot(self.name.clone(), self.shape.clone(), trajectory),
+            Some(parts) => Body::robot_of_parts(name, parts.clone(), trajectory),
+            None => Body::robot(name, self.shape.clone(), trajectory),
         }
     }
 }
@@ -117,8 +269,11 @@ fn pieces<'a>(shape: &'a ConvexPolygon, parts: &'a Option<Parts>) -> &'a [Convex
 pub struct Task {
     /// Name, unique among robots, obstacles and tasks.
     pub name: String,
-    /// The pose the robot holds while doing the task.
+    /// The pose the robot holds while doing the task (for an arm, the tool's pose).
     pub at: Pose,
+    /// The file gave `at` as `[x, y]`: an arm may hold its tool at any angle there (a rigid
+    /// robot holds the angle 0).
+    pub free_angle: bool,
     /// How long the robot stays at `at`.
     pub duration: f64,
     /// Indices (into [`Cell::robots`]) of the robots allowed to do it, increasing.
@@ -154,6 +309,24 @@ impl Cell {
     /// ```
     pub fn obstacle_bodies(&self) -> Vec<Body> {
         self.obstacles.iter().map(CellObstacle::body).collect()
+    }
+
+    /// Robot `r`, which the caller knows to be rigid (the rigid planner and its remedies).
+    ///
+    /// # Panics
+    /// When robot `r` is an arm: a bug of the caller, which must branch on
+    /// [`CellRobot::kind`] first.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// assert_eq!(cell.rigid(1).max_speed, cell.robots[1].as_rigid().unwrap().max_speed);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn rigid(&self, r: usize) -> &RigidRobot {
+        self.robots[r]
+            .as_rigid()
+            .unwrap_or_else(|| panic!("robot {} is an arm, not a rigid robot", self.robots[r].name))
     }
 
     /// An error about this cell's file.

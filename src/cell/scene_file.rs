@@ -1,12 +1,13 @@
 //! Reading a scene file (contract section 1) into a [`Scene`].
 
+use super::arm_file::{ArmAt, RawLink};
 use super::body_shape::BodyShape;
 use super::object_only::object_only;
 use super::reading::{delta, document, read_file, Point};
 use super::InputError;
 use crate::collision::{Body, Scene};
-use crate::geometry::Vec2;
-use crate::motion::{ArmError, ArmMotion, JointSample, Pose, Sample, Trajectory, TrajectoryError};
+use crate::geometry::{Parts, Vec2};
+use crate::motion::{ArmError, ArmMotion, JointSample, Sample, Trajectory, TrajectoryError};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -38,19 +39,6 @@ struct RawRobot {
     #[serde(default)]
     links: Option<Vec<RawLink>>,
     trajectory: Samples,
-}
-
-/// A link of an arm as written: its length and body in its own frame.
-#[derive(Deserialize)]
-#[serde(remote = "Self")]
-struct RawLink {
-    length: f64,
-    #[serde(default)]
-    shape: Option<Vec<Point>>,
-    #[serde(default)]
-    parts: Option<Vec<Vec<Point>>>,
-    #[serde(default)]
-    outline: Option<Vec<Point>>,
 }
 
 #[derive(Deserialize)]
@@ -188,10 +176,6 @@ object_only!(
 object_only!(
     RawRobot,
     "a robot: an object with `name`, `trajectory` and one of `shape`, `parts`, `outline`"
-);
-object_only!(
-    RawLink,
-    "a link: an object with `length` and one of `shape`, `parts`, `outline`"
 );
 object_only!(
     RawSample,
@@ -355,50 +339,14 @@ fn arm(
 ) -> Result<Vec<Body>, InputError> {
     let name = r.name.as_str();
     let err = |field: String, reason: String| InputError::new(file, Some(name), field, reason);
-    for (key, given) in [
+    let place = ArmAt { file, name, at };
+    place.refuse_rigid_keys(&[
         ("shape", r.shape.is_some()),
         ("parts", r.parts.is_some()),
         ("outline", r.outline.is_some()),
-    ] {
-        if given {
-            let reason = format!(
-                "an arm takes `base` and `links` (each link with its own body), not `{key}`"
-            );
-            return Err(err(format!("{at}.{key}"), reason));
-        }
-    }
-    let Some(raw_links) = r.links else {
-        return Err(err(
-            format!("{at}.links"),
-            "an arm needs `links` beside `base`".into(),
-        ));
-    };
-    let base = match r.base.as_deref() {
-        Some(&[x, y, theta]) => Pose::new(x, y, theta),
-        Some(_) => {
-            let reason = "expected the base pose [x, y, theta]".to_owned();
-            return Err(err(format!("{at}.base"), reason));
-        }
-        None => return Err(err(format!("{at}.base"), "an arm needs `base`".into())),
-    };
-    if raw_links.is_empty() {
-        return Err(err(
-            format!("{at}.links"),
-            "an arm needs at least one link".into(),
-        ));
-    }
-    let mut lengths = Vec::with_capacity(raw_links.len());
-    let mut bodies = Vec::with_capacity(raw_links.len());
-    for (k, link) in raw_links.iter().enumerate() {
-        let at = format!("{at}.links[{k}]");
-        let shape = BodyShape {
-            shape: link.shape.as_deref(),
-            parts: link.parts.as_deref(),
-            outline: link.outline.as_deref(),
-        };
-        bodies.push(shape.parts(file, name, &at, warnings)?);
-        lengths.push(link.length);
-    }
+    ])?;
+    let (base, links) = place.frame(r.base.as_deref(), r.links.as_deref(), warnings)?;
+    let (lengths, bodies): (Vec<f64>, Vec<Parts>) = links.into_iter().unzip();
     let Samples::Joints(samples) = r.trajectory else {
         let reason = "an arm's samples give its joint angles `q` (and optional `qd`), not a pose";
         return Err(err(format!("{at}.trajectory[0]"), reason.into()));

@@ -6,8 +6,8 @@
 //! move times infinite. What can be told from the cell alone is refused here, when it is
 //! read: the schedule itself is checked again when it is built (`wcp`).
 
-use super::{CellRobot, InputError, Task};
-use crate::motion::rest_to_rest_time;
+use super::{CellRobot, InputError, RigidRobot, RobotKind, Task};
+use crate::motion::{rest_to_rest_time, JointLimits};
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 
@@ -58,7 +58,11 @@ pub(super) fn check_time_axis(
         }
     }
     for (k, r) in robots.iter().enumerate() {
-        if let Some((field, reason)) = profile_out_of_range(r) {
+        let out = match &r.kind {
+            RobotKind::Rigid(b) => profile_out_of_range(b).map(|(f, why)| (f.to_owned(), why)),
+            RobotKind::Arm(a) => joints_out_of_range(&a.limits),
+        };
+        if let Some((field, reason)) = out {
             let field = format!("robots[{k}].{field}");
             return Err(InputError::new(file, Some(&r.name), field, reason));
         }
@@ -66,7 +70,9 @@ pub(super) fn check_time_axis(
     for (k, task) in tasks.iter().enumerate() {
         for &ri in &task.robots {
             let r = &robots[ri];
-            let (arrival, slowest) = fastest_arrival(r, task);
+            // An arm's configuration at the task is the solver's choice: no bound here.
+            let Some(rigid) = r.as_rigid() else { continue };
+            let (arrival, slowest) = fastest_arrival(rigid, task);
             if !arrival.is_finite() {
                 let reason = format!(
                     "the robot's fastest move from home to task \"{}\" takes longer than f64 \
@@ -109,7 +115,7 @@ pub(super) fn check_time_axis(
 /// max_accel` and `max_turn_rate` over the angular acceleration. Beyond, the planner's
 /// profiles overflow or vanish (an infinite angular acceleration gave NaN angles). Returns
 /// the limit to blame, the more extreme of the two in a ratio, and why.
-fn profile_out_of_range(r: &CellRobot) -> Option<(&'static str, String)> {
+fn profile_out_of_range(r: &RigidRobot) -> Option<(&'static str, String)> {
     let normal = |q: f64| (f64::MIN_POSITIVE..f64::INFINITY).contains(&q);
     let alpha = r.max_accel / r.shape.radius();
     let extreme = |(fa, a): (&'static str, f64), (fb, b): (&'static str, f64)| {
@@ -142,29 +148,55 @@ fn profile_out_of_range(r: &CellRobot) -> Option<(&'static str, String)> {
     checks
         .into_iter()
         .find(|&(_, q, _)| !normal(q))
-        .map(|(what, q, field)| {
-            let reason = format!(
-                "{what} is {q:e}, out of the range of normal f64 numbers [{:.1e}, {:.1e}]: the \
-             motion profiles would overflow or vanish; bring the limits closer together",
-                f64::MIN_POSITIVE,
-                f64::MAX
-            );
-            (field, reason)
-        })
+        .map(|(what, q, field)| (field, not_normal(what, q)))
 }
 
-fn limits(r: &CellRobot) -> [(&'static str, f64); 3] {
-    [
-        ("max_speed", r.max_speed),
-        ("max_accel", r.max_accel),
-        ("max_turn_rate", r.max_turn_rate),
-    ]
+/// As [`profile_out_of_range`] for an arm: each joint's time to reach its speed,
+/// `max_joint_speed / max_joint_accel`, a normal number.
+fn joints_out_of_range(limits: &JointLimits) -> Option<(String, String)> {
+    let normal = |q: f64| (f64::MIN_POSITIVE..f64::INFINITY).contains(&q);
+    (limits.max_speed.iter().zip(&limits.max_accel).enumerate()).find_map(|(j, (&v, &a))| {
+        let field = if v.log10().abs() >= a.log10().abs() {
+            format!("max_joint_speed[{j}]")
+        } else {
+            format!("max_joint_accel[{j}]")
+        };
+        let what = "max_joint_speed / max_joint_accel (the time to reach the joint's speed)";
+        (!normal(v / a)).then(|| (field, not_normal(what, v / a)))
+    })
+}
+
+fn not_normal(what: &str, q: f64) -> String {
+    format!(
+        "{what} is {q:e}, out of the range of normal f64 numbers [{:.1e}, {:.1e}]: the motion \
+         profiles would overflow or vanish; bring the limits closer together",
+        f64::MIN_POSITIVE,
+        f64::MAX
+    )
+}
+
+/// The robot's limits with the fields that name them.
+fn limits(r: &CellRobot) -> Vec<(String, f64)> {
+    match &r.kind {
+        RobotKind::Rigid(b) => vec![
+            ("max_speed".into(), b.max_speed),
+            ("max_accel".into(), b.max_accel),
+            ("max_turn_rate".into(), b.max_turn_rate),
+        ],
+        RobotKind::Arm(a) => {
+            let speeds = (a.limits.max_speed.iter().enumerate())
+                .map(|(j, &v)| (format!("max_joint_speed[{j}]"), v));
+            let accels = (a.limits.max_accel.iter().enumerate())
+                .map(|(j, &v)| (format!("max_joint_accel[{j}]"), v));
+            speeds.chain(accels).collect()
+        }
+    }
 }
 
 fn describe_limits(r: &CellRobot) -> String {
     limits(r)
         .iter()
-        .map(|&(field, value)| format!("{field} {}", number(value)))
+        .map(|(field, value)| format!("{field} {}", number(*value)))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -195,7 +227,7 @@ pub(crate) fn number(v: f64) -> String {
 /// that bounds it most. Any planned path is at least the straight line, and a rest-to-rest
 /// time only grows when a distance is split into stops; the turn is at least the shortest
 /// way to the task's angle, at the angular acceleration `max_accel / radius` of the model.
-fn fastest_arrival(r: &CellRobot, task: &Task) -> (f64, &'static str) {
+fn fastest_arrival(r: &RigidRobot, task: &Task) -> (f64, &'static str) {
     let distance = (task.at.pos - r.home.pos).norm();
     let translation = rest_to_rest_time(distance, r.max_speed, r.max_accel);
     let turn = ((task.at.theta - r.home.theta + PI).rem_euclid(TAU) - PI).abs();

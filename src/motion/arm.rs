@@ -21,6 +21,17 @@ pub struct JointSample {
     pub qd: Vec<f64>,
 }
 
+/// An arm's joint limits and dynamics, one entry per joint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointLimits {
+    /// `[min, max]` of each joint, `None` for a joint that turns freely.
+    pub range: Vec<Option<[f64; 2]>>,
+    /// Largest speed of each joint (rad per time unit), positive.
+    pub max_speed: Vec<f64>,
+    /// Largest acceleration of each joint, positive.
+    pub max_accel: Vec<f64>,
+}
+
 /// Why joint samples cannot make an arm's trajectory; each names the sample.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ArmError {

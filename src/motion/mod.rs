@@ -14,7 +14,7 @@ mod motion_kind;
 mod profile;
 mod trajectory;
 
-pub use arm::{forward_kinematics, ArmError, ArmMotion, JointSample, LinkMotion};
+pub use arm::{forward_kinematics, ArmError, ArmMotion, JointLimits, JointSample, LinkMotion};
 pub use bounds::{lambda, BoundKind};
 pub use ik::{inverse_kinematics, tool_pose, IkSettings, ToolGoal, Unreachable};
 pub use motion_kind::Motion;

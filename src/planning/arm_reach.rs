@@ -2,10 +2,13 @@
 //! that put its tool at a task's pose clear of the fixtures, and whether a joint-space move
 //! stays clear of them, both proven by the checker.
 
-use super::joint_move::{JointLimits, JointMove};
+use super::joint_move::JointMove;
+use crate::cell::ArmRobot;
 use crate::collision::{check, Arm, Body, CheckOptions, Scene};
 use crate::geometry::Parts;
-use crate::motion::{inverse_kinematics, IkSettings, JointSample, Pose, ToolGoal, Unreachable};
+use crate::motion::{
+    inverse_kinematics, IkSettings, JointLimits, JointSample, Pose, ToolGoal, Unreachable,
+};
 
 /// An arm as the planner takes it: where it stands, its links and its joints' limits.
 #[derive(Clone, Debug)]
@@ -42,6 +45,29 @@ impl std::fmt::Display for Refusal {
 }
 
 impl ArmModel {
+    /// The arm `name` of a cell, for planning.
+    ///
+    /// ```
+    /// use workcell::cell::ArmRobot;
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, Pose};
+    /// use workcell::planning::ArmModel;
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.1, -0.1], [1.1, -0.1], [1.1, 0.1], [-0.1, 0.1]])?])?;
+    /// let limits = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![2.0] };
+    /// let arm = ArmRobot { base: Pose::new(1.0, 0.0, 0.0), links: vec![(1.0, bar)], home: vec![0.0], limits };
+    /// let model = ArmModel::new("A1", &arm);
+    /// assert_eq!((model.name.as_str(), model.base, &model.limits), ("A1", arm.base, &arm.limits));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn new(name: &str, arm: &ArmRobot) -> ArmModel {
+        ArmModel {
+            name: name.to_owned(),
+            base: arm.base,
+            links: arm.links.clone(),
+            limits: arm.limits.clone(),
+        }
+    }
+
     fn lengths(&self) -> Vec<f64> {
         self.links.iter().map(|l| l.0).collect()
     }
@@ -78,7 +104,8 @@ impl ArmModel {
     /// use workcell::collision::Body;
     /// use workcell::geometry::{ConvexPolygon, Parts, Vec2};
     /// use workcell::motion::{IkSettings, Pose, ToolGoal};
-    /// use workcell::planning::{ArmModel, JointLimits, Refusal};
+    /// use workcell::motion::JointLimits;
+    /// use workcell::planning::{ArmModel, Refusal};
     /// let bar = |l: f64| Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.05, -0.05], [l + 0.05, -0.05], [l + 0.05, 0.05], [-0.05, 0.05]])?]);
     /// let arm = ArmModel {
     ///     name: "A1".into(),
@@ -135,7 +162,8 @@ impl ArmModel {
     /// use workcell::collision::Body;
     /// use workcell::geometry::{ConvexPolygon, Parts};
     /// use workcell::motion::Pose;
-    /// use workcell::planning::{joint_move, ArmModel, JointLimits};
+    /// use workcell::motion::JointLimits;
+    /// use workcell::planning::{joint_move, ArmModel};
     /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.05, -0.05], [1.05, -0.05], [1.05, 0.05], [-0.05, 0.05]])?])?;
     /// let limits = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![1.0] };
     /// let arm = ArmModel { name: "A1".into(), base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar)], limits };

@@ -3,19 +3,8 @@
 //! limits. The slowest joint sets the duration; every other joint follows a trapezoid of
 //! that duration (the smaller cruise speed that fits, so its own limits hold too).
 
-use crate::motion::{JointSample, Trapezoid};
+use crate::motion::{JointLimits, JointSample, Trapezoid};
 use std::f64::consts::{PI, TAU};
-
-/// An arm's joint limits and dynamics, one entry per joint.
-#[derive(Clone, Debug, PartialEq)]
-pub struct JointLimits {
-    /// `[min, max]` of each joint, `None` for a joint that turns freely.
-    pub range: Vec<Option<[f64; 2]>>,
-    /// Largest speed of each joint (rad per time unit), positive.
-    pub max_speed: Vec<f64>,
-    /// Largest acceleration of each joint, positive.
-    pub max_accel: Vec<f64>,
-}
 
 /// A move in joint space, rest to rest.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,7 +21,8 @@ impl JointMove {
     /// turns for one without (it turns the shorter way).
     ///
     /// ```
-    /// use workcell::planning::{joint_move, JointLimits};
+    /// use workcell::motion::JointLimits;
+    /// use workcell::planning::joint_move;
     /// let limits = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![1.0] };
     /// let m = joint_move(&[0.0], &[7.0], &limits, 2);
     /// assert!((m.end()[0] - (7.0 - 2.0 * std::f64::consts::PI)).abs() < 1e-12); // one turn less
@@ -61,7 +51,8 @@ fn turn(limits: &JointLimits, j: usize, a: f64, b: f64) -> f64 {
 /// The synchronised rest-to-rest move from joint angles `from` to `to`.
 ///
 /// ```
-/// use workcell::planning::{joint_move, JointLimits};
+/// use workcell::motion::JointLimits;
+/// use workcell::planning::joint_move;
 /// let limits = JointLimits {
 ///     range: vec![None, Some([-2.0, 2.0])],
 ///     max_speed: vec![1.0, 2.0],

@@ -101,7 +101,8 @@ impl ArmModel {
     /// use workcell::collision::Body;
     /// use workcell::geometry::{ConvexPolygon, Parts};
     /// use workcell::motion::Pose;
-    /// use workcell::planning::{ArmModel, JointLimits, JointPathSettings};
+    /// use workcell::motion::JointLimits;
+    /// use workcell::planning::{ArmModel, JointPathSettings};
     /// let bar = |l: f64| Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.05, -0.05], [l + 0.05, -0.05], [l + 0.05, 0.05], [-0.05, 0.05]])?]);
     /// let limits = JointLimits { range: vec![None, None], max_speed: vec![1.0, 1.0], max_accel: vec![2.0, 2.0] };
     /// let arm = ArmModel { name: "A1".into(), base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar(1.0)?), (1.0, bar(1.0)?)], limits };
@@ -258,9 +259,9 @@ fn shortened(path: Vec<Vec<f64>>, clear: &dyn Fn(&[f64], &[f64]) -> bool) -> Vec
 mod tests {
     use super::*;
     use crate::geometry::ConvexPolygon;
+    use crate::motion::JointLimits;
     use crate::motion::Pose;
     use crate::planning::arm_reach::tests::bar;
-    use crate::planning::JointLimits;
 
     fn arm() -> ArmModel {
         ArmModel {

@@ -94,7 +94,7 @@ mod visibility;
 
 pub use crate::motion::rest_to_rest_time;
 pub use arm_reach::{ArmModel, Refusal};
-pub use joint_move::{joint_move, JointLimits, JointMove};
+pub use joint_move::{joint_move, JointMove};
 pub use joint_paths::{JointPath, JointPathSettings};
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;

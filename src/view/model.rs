@@ -326,7 +326,7 @@ impl Model {
             .filter_map(|r| r.change.as_ref())
             .collect();
         for (r, robot) in robots.iter_mut().enumerate() {
-            let home = cell.robots[r].home;
+            let home = cell.rigid(r).home;
             robot.home = Some([home.pos.x, home.pos.y, home.theta]);
             if let Some((_, tasks)) = result.sequences.get(r) {
                 robot.order = tasks.iter().filter_map(|t| task_index(t)).collect();

@@ -1,5 +1,6 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
+use super::configurations::refuse_arms;
 use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use super::moves::{limits, MoveStore};
 use super::options::SolveOptions;
@@ -68,6 +69,7 @@ pub fn evaluate(
     opts: &SolveOptions,
     sequences_file: &Path,
 ) -> Result<Evaluated, InputError> {
+    refuse_arms(cell)?;
     let mut times = StageTimes::default();
     let clock = Instant::now();
     let moves = MoveStore::new(cell, &opts.planner);
@@ -344,7 +346,7 @@ fn limits_reason(
     resolution: &str,
     what_lost: &str,
 ) -> String {
-    let robot = &cell.robots[r];
+    let robot = cell.rigid(r);
     let limits = format!(
         "max_speed {}, max_accel {}, max_turn_rate {}",
         number(robot.max_speed),
@@ -381,7 +383,7 @@ fn piece(cell: &Cell, r: usize, spec: &PieceSpec, opts: &SolveOptions) -> Piece 
             },
         },
         PieceSpec::Go { primitives, scale } => {
-            let robot = &cell.robots[r];
+            let robot = cell.rigid(r);
             let limits = limits(robot);
             let primitives: Vec<Primitive> = primitives
                 .iter()

@@ -14,6 +14,7 @@
 //!    former loop (re-sequence or wait, the better each round).
 //! 5. [`evaluate`]: the same schedule and check for sequences given by the user.
 
+mod configurations;
 mod evaluate;
 mod feedback;
 mod graph;
@@ -29,6 +30,7 @@ mod sequence;
 pub mod sequencer;
 mod time_axis;
 
+pub use configurations::{task_configurations, Configuration, Configurations};
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
     describe, solve, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved,

@@ -1,6 +1,7 @@
 //! Before sequencing: the lower bounds of every move and the moves planned up front
 //! ([`prepare`]), and what a solve reports as it goes ([`Progress`], [`StageTimes`]).
 
+use super::configurations::refuse_arms;
 use super::graph::{check_reachable, plan_reaches};
 use super::moves::{bounds, robot_nodes, MoveStore};
 use super::options::{Planning, SolveOptions, AUTO_ALL_MAX_MOVES};
@@ -100,6 +101,7 @@ pub fn prepare(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Prepared, InputError> {
+    refuse_arms(cell)?;
     let deadline = opts
         .time_limit
         .and_then(|limit| Instant::now().checked_add(limit));

@@ -69,7 +69,7 @@ fn bad_arms_are_named() {
         "not `shape`",
     );
     refused(
-        |a| a["base"] = json!([0, 0]),
+        |a| a["base"] = json!([0]),
         "robots[0].base",
         "[x, y, theta]",
     );

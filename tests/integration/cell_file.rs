@@ -45,8 +45,8 @@ fn a_valid_cell_reads_with_defaults() {
         ]
         .join(","),
     ));
-    assert_eq!(c.robots[0].home.theta, 0.0);
-    assert_eq!(c.robots[1].home.theta, 1.0);
+    assert_eq!(c.rigid(0).home.theta, 0.0);
+    assert_eq!(c.rigid(1).home.theta, 1.0);
     assert_eq!(c.tasks[0].robots, vec![0, 1], "default: every robot");
     assert_eq!(c.tasks[1].robots, vec![1]);
     assert_eq!(c.tasks[1].at.theta, 0.5);
@@ -70,8 +70,8 @@ fn duplicate_names_are_refused_across_kinds() {
     assert_eq!(e.field, "robots[1].name");
 }
 
-/// A missing limit is named by its field; an arm (contract section 7), which the solver does
-/// not schedule yet, by its `links` (or its `base`), not by the rigid limits it lacks.
+/// A missing limit is named by its field; an arm (contract section 7) is read, and the
+/// solver, which does not schedule arms yet, names it by its `links`.
 #[test]
 fn missing_limits_and_arms_are_named() {
     for field in ["max_speed", "max_accel", "max_turn_rate"] {
@@ -85,11 +85,19 @@ fn missing_limits_and_arms_are_named() {
         );
         assert!(e.reason.contains("missing"), "{e}");
     }
-    let arm = r#"{"name": "A1", "base": [0, 0, 0], "home": [0, 1.57],
+    let arm = r#"{"name": "A1", "base": [0, 5, 0], "home": [1.57],
         "links": [{"length": 0.8, "shape": [[-0.1,-0.1],[0.9,-0.1],[0.9,0.1],[-0.1,0.1]]}],
         "max_joint_speed": 2, "max_joint_accel": 4}"#;
     let text = cell(&format!("{}, {arm}", robot("R1", "[0, 0]")), "", "");
-    let e = refused(&text);
+    let read = parse_cell(&text, Path::new("c.json")).unwrap().cell;
+    assert_eq!(
+        read.robots[1].as_arm().map(|a| a.home.clone()),
+        Some(vec![1.57])
+    );
+    let opts = workcell::wcp::SolveOptions::default();
+    let e = workcell::wcp::prepare(&read, &opts, &())
+        .map(|_| ())
+        .unwrap_err();
     assert_eq!(
         (e.body.as_deref(), e.field.as_str()),
         (Some("A1"), "robots[1].links"),
@@ -97,7 +105,7 @@ fn missing_limits_and_arms_are_named() {
     );
     assert!(e.reason.contains("do not schedule arms yet"), "{e}");
     let base_only = text.replace(r#""links": "#, r#""other": "#);
-    assert_eq!(refused(&base_only).field, "robots[1].base");
+    assert_eq!(refused(&base_only).field, "robots[1].links");
 }
 
 #[test]

@@ -57,19 +57,20 @@ fn assert_certified_within_limits(cell: &Cell, solved: &Solved) {
     );
     let slack = 1.0 + 1e-6;
     for (r, plan) in solved.schedule.robots.iter().enumerate() {
-        let robot = &cell.robots[r];
+        let robot = cell.rigid(r);
+        let name = &cell.robots[r].name;
         let alpha = robot.max_accel / robot.shape.radius();
         for s in &plan.samples {
             assert!(
                 s.vel.norm() <= robot.max_speed * slack,
                 "{}: speed {}",
-                robot.name,
+                name,
                 s.vel.norm()
             );
             assert!(
                 s.omega.abs() <= robot.max_turn_rate * slack,
                 "{}: turn rate {}",
-                robot.name,
+                name,
                 s.omega
             );
         }
@@ -80,13 +81,13 @@ fn assert_certified_within_limits(cell: &Cell, solved: &Solved) {
             assert!(
                 accel <= robot.max_accel * slack + 1e-9,
                 "{}: accel {accel} at {}",
-                robot.name,
+                name,
                 w[0].t
             );
             assert!(
                 spin <= alpha * slack + 1e-9,
                 "{}: angular accel {spin} at {}",
-                robot.name,
+                name,
                 w[0].t
             );
         }

@@ -236,25 +236,26 @@ fn a_cell_built_in_code_is_refused_where_its_file_would_be() {
         .unwrap()
         .cell;
     let robot = loaded.robots[0].clone();
+    let home = loaded.rigid(0).home;
     // The same messages as the file reader's, for the same faults.
     let mut cell = Cell::new(loaded.delta).unwrap();
     cell.add_robot(robot.clone()).unwrap();
-    let e = cell
-        .add_task(&robot.name, robot.home, 1.0, None)
-        .unwrap_err();
+    let e = cell.add_task(&robot.name, home, 1.0, None).unwrap_err();
     assert_eq!(e.field, "tasks[0].name");
     assert_eq!(e.reason, "the name is already used by robot `robots[0]`");
-    let e = cell.add_task("t", robot.home, -1.0, None).unwrap_err();
+    let e = cell.add_task("t", home, -1.0, None).unwrap_err();
     assert_eq!(
         (e.field.as_str(), e.reason.as_str()),
         ("tasks[0].duration", "must be a non-negative number, got -1")
     );
-    let e = cell.add_task("t", robot.home, 1.0, Some(&[])).unwrap_err();
+    let e = cell.add_task("t", home, 1.0, Some(&[])).unwrap_err();
     assert_eq!(e.field, "tasks[0].robots");
     // What a file cannot hold and code can: a NaN pose.
     let mut bad = robot.clone();
     bad.name = "R9".into();
-    bad.home.theta = f64::NAN;
+    if let workcell::cell::RobotKind::Rigid(rigid) = &mut bad.kind {
+        rigid.home.theta = f64::NAN;
+    }
     let e = cell.add_robot(bad).unwrap_err();
     assert_eq!(
         (e.body.as_deref(), e.field.as_str()),

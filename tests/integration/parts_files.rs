@@ -179,7 +179,7 @@ fn cells_take_parts_and_outlines_and_keep_the_hull_as_shape() {
     let loaded = parse_cell(&cell(gripper), Path::new("c.json"))
         .unwrap()
         .cell;
-    let (robot, bay) = (&loaded.robots[0], &loaded.obstacles[0]);
+    let (robot, bay) = (loaded.rigid(0), &loaded.obstacles[0]);
     assert_eq!(robot.pieces().len(), 3);
     assert_eq!(robot.parts.as_ref().unwrap().hull(), &robot.shape);
     // The outline is cut into convex parts; the hull is the bounding square.
@@ -213,7 +213,7 @@ fn cells_take_parts_and_outlines_and_keep_the_hull_as_shape() {
     let square = json!({"name": "R", "outline": [[0, 0], [0.2, 0], [0.2, 0.2], [0, 0.2]],
                         "home": [0, 0], "max_speed": 1, "max_accel": 1, "max_turn_rate": 1});
     let loaded = parse_cell(&cell(square), Path::new("c.json")).unwrap().cell;
-    assert!(loaded.robots[0].parts.is_none());
+    assert!(loaded.rigid(0).parts.is_none());
     // Both `shape` and `parts`: refused by name, as in scenes.
     let both = json!({"name": "R", "shape": [[0, 0], [0.2, 0], [0.2, 0.2]],
                       "parts": [[[0, 0], [0.2, 0], [0.2, 0.2]]],

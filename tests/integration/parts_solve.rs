@@ -19,7 +19,7 @@ fn least_gap(cell: &Cell, solved: &Solved, instants: usize) -> (f64, f64) {
         let t = end * k as f64 / instants as f64;
         let robot_parts = |r: usize| -> Vec<Vec<Vec2>> {
             let p = solved.schedule.robots[r].pose_at(t);
-            cell.robots[r]
+            cell.rigid(r)
                 .pieces()
                 .iter()
                 .map(|q| place(q.vertices(), [p.pos.x, p.pos.y, p.theta]))
@@ -76,13 +76,13 @@ fn the_bay_cell_is_solved_where_hulls_would_block_it() {
     let (bay, post) = (&cell.obstacles[0], &cell.obstacles[1]);
     let inside = cell.tasks[task("inside")].at;
     let r1 = place(
-        cell.robots[0].shape.vertices(),
+        cell.rigid(0).shape.vertices(),
         [inside.pos.x, inside.pos.y, 0.0],
     );
     assert_eq!(exact_distance(&r1, bay.shape.vertices()), 0.0);
     let grip = cell.tasks[task("grip")].at;
     let g_hull = place(
-        cell.robots[1].shape.vertices(),
+        cell.rigid(1).shape.vertices(),
         [grip.pos.x, grip.pos.y, 0.0],
     );
     assert_eq!(exact_distance(&g_hull, post.shape.vertices()), 0.0);

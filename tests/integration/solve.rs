@@ -34,10 +34,10 @@ fn assert_valid_solution(cell: &Cell, solved: &Solved) {
         let trajectory = scene.bodies[r].motion.clone();
         let samples = plan.samples.clone();
         assert_eq!(samples[0].t, 0.0);
-        assert_eq!(samples[0].pos, cell.robots[r].home.pos, "starts at home");
+        assert_eq!(samples[0].pos, cell.rigid(r).home.pos, "starts at home");
         assert_eq!(
             samples.last().unwrap().pos,
-            cell.robots[r].home.pos,
+            cell.rigid(r).home.pos,
             "ends at home"
         );
         for seg in &plan.segments {
@@ -157,7 +157,8 @@ fn every_planned_move_is_clear_and_no_faster_than_the_straight_line_bound() {
     let opts = SolveOptions::default();
     let obstacles = cell.obstacle_bodies();
     for r in 0..cell.robots.len() {
-        let robot = &cell.robots[r];
+        let robot = cell.rigid(r);
+        let name = &cell.robots[r].name;
         let nodes = wcp::robot_nodes(&cell, r);
         for &a in &nodes {
             for &b in &nodes {
@@ -168,7 +169,7 @@ fn every_planned_move_is_clear_and_no_faster_than_the_straight_line_bound() {
                     .expect("every move exists here");
                 // Checked again here, independently of the table that certified it.
                 let mut bodies = vec![workcell::collision::Body::robot(
-                    robot.name.clone(),
+                    name.clone(),
                     robot.shape.clone(),
                     workcell::motion::Trajectory::new(m.samples.clone()).unwrap(),
                 )];

@@ -30,7 +30,8 @@ pub(super) fn clears(
     opts: &CheckOptions,
 ) -> bool {
     let body = |r: usize, s: &RobotSchedule| -> Option<Body> {
-        Some(cell.robots[r].body(Trajectory::new(window(&s.samples, t0, t1)).ok()?))
+        let trajectory = Trajectory::new(window(&s.samples, t0, t1)).ok()?;
+        Some(cell.rigid(r).body(&cell.robots[r].name, trajectory))
     };
     let (Some(a), Some(b)) = (body(x, sx), body(y, sy)) else {
         return false;

@@ -9,7 +9,7 @@
 
 use super::sequencer::{node_task, task_node};
 use super::sequencer::{BoundLimits, Bounds};
-use crate::cell::{Cell, CellRobot};
+use crate::cell::{Cell, RigidRobot};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::geometry::{ConvexPolygon, Vec2};
 use crate::motion::{Pose, Sample, Trajectory};
@@ -74,13 +74,13 @@ impl fmt::Display for MoveFailure {
 /// ```
 /// use workcell::wcp::node_pose;
 /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-/// assert_eq!(node_pose(&cell, 1, 0), cell.robots[1].home);
+/// assert_eq!(node_pose(&cell, 1, 0), cell.rigid(1).home);
 /// assert_eq!(node_pose(&cell, 1, 3), cell.tasks[2].at);
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
 pub fn node_pose(cell: &Cell, r: usize, node: usize) -> Pose {
     match node {
-        0 => cell.robots[r].home,
+        0 => cell.rigid(r).home,
         n => cell.tasks[node_task(n)].at,
     }
 }
@@ -129,7 +129,7 @@ pub fn robot_nodes(cell: &Cell, r: usize) -> Vec<usize> {
 }
 
 /// The planner's limits of a robot of the cell.
-pub(crate) fn limits(robot: &CellRobot) -> RobotLimits {
+pub(crate) fn limits(robot: &RigidRobot) -> RobotLimits {
     RobotLimits {
         max_speed: robot.max_speed,
         max_accel: robot.max_accel,
@@ -191,7 +191,7 @@ fn plan_only(
     planner: &PlannerOptions,
     fixtures: &Fixtures,
 ) -> Result<PlannedMove, MoveFailure> {
-    let robot = &cell.robots[r];
+    let robot = cell.rigid(r);
     let (a, b) = (node_pose(cell, r, from), node_pose(cell, r, to));
     let name = |piece: usize| cell.obstacles[fixtures.owner[piece]].name.clone();
     plan_move(
@@ -245,11 +245,11 @@ pub(crate) fn certify(
     if obstacles.is_empty() {
         return Ok(());
     }
-    let robot = &cell.robots[r];
+    let robot = cell.rigid(r);
     let trajectory = Trajectory::new(samples.to_vec())
         .expect("the planner emits finite samples at increasing times");
     let mut bodies = Vec::with_capacity(obstacles.len() + 1);
-    bodies.push(robot.body(trajectory));
+    bodies.push(robot.body(&cell.robots[r].name, trajectory));
     bodies.extend_from_slice(obstacles);
     let report = check(
         &Scene {
@@ -283,8 +283,8 @@ pub(crate) fn certify(
 pub fn bounds(cell: &Cell) -> Bounds {
     let pose = |p: &Pose| (p.pos, p.theta);
     Bounds::new(
-        cell.robots
-            .iter()
+        (0..cell.robots.len())
+            .map(|r| cell.rigid(r))
             .map(|r| BoundLimits {
                 max_speed: r.max_speed,
                 max_accel: r.max_accel,
@@ -292,7 +292,9 @@ pub fn bounds(cell: &Cell) -> Bounds {
                 max_turn_rate: r.max_turn_rate,
             })
             .collect(),
-        cell.robots.iter().map(|r| pose(&r.home)).collect(),
+        (0..cell.robots.len())
+            .map(|r| pose(&cell.rigid(r).home))
+            .collect(),
         cell.tasks.iter().map(|t| pose(&t.at)).collect(),
     )
 }

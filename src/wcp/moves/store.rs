@@ -150,7 +150,7 @@ impl MoveStore {
     /// samples: a farther one cannot come within δ.
     fn plan(&self, r: usize, a: usize, b: usize) -> Result<PlannedMove, MoveFailure> {
         let cell = &self.cell;
-        let robot = &cell.robots[r];
+        let robot = cell.rigid(r);
         let (pa, pb) = (node_pose(cell, r, a).pos, node_pose(cell, r, b).pos);
         let clearance = cell.delta * (1.0 + self.planner.clearance_margin);
         let reach = (robot.shape.radius() / (self.planner.rotation_step / 2.0).cos()
@@ -289,7 +289,7 @@ impl MoveStore {
         if let Some(known) = self.lock_between().get(&key) {
             return known.clone();
         }
-        let robot = &self.cell.robots[r];
+        let robot = self.cell.rigid(r);
         let mut obstacles = self.fixtures.pieces.clone();
         obstacles.extend_from_slice(extra);
         let planned = plan_move(
@@ -315,7 +315,7 @@ impl MoveStore {
 
     /// Times primitives for robot `r` as the planner would.
     pub(crate) fn timed(&self, r: usize, primitives: &[Primitive]) -> Arc<PlannedMove> {
-        let robot = &self.cell.robots[r];
+        let robot = self.cell.rigid(r);
         Arc::new(time_primitives(
             robot.shape.radius(),
             &limits(robot),

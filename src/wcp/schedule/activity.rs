@@ -230,10 +230,10 @@ impl RobotSchedule {
     /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
     /// let store = MoveStore::new(&cell, &PlannerOptions::default());
     /// let r1 = RobotSchedule::build(&cell, 0, &[0], &[], &store).unwrap();
-    /// assert_eq!(r1.pose_at(0.0), cell.robots[0].home);
+    /// assert_eq!(r1.pose_at(0.0), cell.rigid(0).home);
     /// let at_weld = r1.segments[1].start; // after the move out
     /// assert_eq!(r1.pose_at(at_weld).pos, node_pose(&cell, 0, 1).pos);
-    /// assert_eq!(r1.pose_at(r1.end + 5.0), cell.robots[0].home);
+    /// assert_eq!(r1.pose_at(r1.end + 5.0), cell.rigid(0).home);
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn pose_at(&self, t: f64) -> Pose {

@@ -117,7 +117,8 @@ impl Schedule {
     }
 
     fn body(&self, cell: &Cell, r: usize) -> Body {
-        cell.robots[r].body(
+        cell.rigid(r).body(
+            &cell.robots[r].name,
             Trajectory::new(self.robots[r].samples.clone())
                 .expect("schedules sample increasing times"),
         )
@@ -145,13 +146,10 @@ impl Schedule {
         let robot = |name: &str| cell.robots.iter().position(|r| r.name == name);
         let a = robot(&contact.bodies[0]).expect("the checker names a robot first");
         let b = robot(&contact.bodies[1]);
-        let pieces_a = cell.robots[a].pieces();
+        let pieces_a = cell.rigid(a).pieces();
         let pose_a = self.robots[a].pose_at(contact.time);
         let (pieces_b, pose_b) = match b {
-            Some(b) => (
-                cell.robots[b].pieces(),
-                self.robots[b].pose_at(contact.time),
-            ),
+            Some(b) => (cell.rigid(b).pieces(), self.robots[b].pose_at(contact.time)),
             None => {
                 let o = cell
                     .obstacles

@@ -36,7 +36,7 @@ fn occupancy(ctx: &Ctx, view: &View, y: usize, t0: f64, t1: f64) -> Vec<ConvexPo
     // Piece by piece: a robot of parts leaves free what lies between its parts (a gripper's
     // opening), which the hull of the whole robot would close.
     let mut out = Vec::new();
-    for piece in ctx.cell.robots[y].pieces() {
+    for piece in ctx.cell.rigid(y).pieces() {
         let placed = |p: Pose| -> Vec<Vec2> {
             let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
             (0..posed.len()).map(|i| posed.vertex(i)).collect()
@@ -75,8 +75,8 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         _ => (t0, t1),
     }];
     if matches!(side.sy.activity, Activity::Move { .. }) {
-        let robot = &ctx.cell.robots[side.x];
-        let reach = robot.shape.radius() + ctx.cell.robots[side.y].shape.radius();
+        let robot = ctx.cell.rigid(side.x);
+        let reach = robot.shape.radius() + ctx.cell.rigid(side.y).shape.radius();
         let tau = DETOUR_REACH * reach / robot.max_speed;
         let (w0, w1) = windows[0];
         let near = ((side.t - tau).max(w0), (side.t + tau).min(w1));

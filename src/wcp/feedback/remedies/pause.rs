@@ -83,7 +83,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     };
     let here = view.robots[side.x].pose_at(t).pos;
     let at = arc_length_at(&motion.path, here);
-    let reach = ctx.cell.robots[side.x].shape.radius() + ctx.cell.robots[side.y].shape.radius();
+    let reach = ctx.cell.rigid(side.x).shape.radius() + ctx.cell.rigid(side.y).shape.radius();
     let old = leg(view.legs, side.x, m).clone();
     let t0 = leg_window(&view.robots[side.x], m).0;
     let horizons = horizons(view, side.y, &side.sy, t0);

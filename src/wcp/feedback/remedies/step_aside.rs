@@ -28,7 +28,7 @@ fn parking_poses(
     (t0, t1): (f64, f64),
 ) -> Vec<Pose> {
     let cell = ctx.cell;
-    let (rx, ry) = (cell.robots[x].shape.radius(), cell.robots[y].shape.radius());
+    let (rx, ry) = (cell.rigid(x).shape.radius(), cell.rigid(y).shape.radius());
     let ys = &view.robots[y];
     let passes: Vec<Vec2> = ys
         .samples
@@ -41,7 +41,7 @@ fn parking_poses(
     let tol = WalkTolerances::default();
     // Part by part: a robot of parts may park inside a bay its hull would not fit.
     let clear_of_fixtures = |p: Pose| {
-        cell.robots[x].pieces().iter().all(|piece| {
+        cell.rigid(x).pieces().iter().all(|piece| {
             let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
             obstacles.iter().all(|o| {
                 let Motion::Fixed(at) = &o.motion else {
@@ -180,14 +180,14 @@ mod tests {
         );
         let test = TestCell::new(&text, vec![vec![], vec![]]);
         let cell = &test.cell;
-        let home = cell.robots[0].home;
+        let home = cell.rigid(0).home;
         let poses = parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0));
         let east = poses
             .iter()
             .find(|p| (p.pos - Vec2::new(2.0 * radius, 0.0)).norm() < 1e-9)
             .expect("the pose with the post between the fingers");
         // Its hull there would overlap the post.
-        let hull = Posed::new(&cell.robots[0].shape, east.pos.x, east.pos.y, east.theta);
+        let hull = Posed::new(&cell.rigid(0).shape, east.pos.x, east.pos.y, east.theta);
         let post = Posed::new(&cell.obstacles[0].shape, 0.0, 0.0, 0.0);
         let d = closest_features(&hull, &post, None, &WalkTolerances::default()).distance;
         assert_eq!(d, 0.0);
