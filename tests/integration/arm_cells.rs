@@ -243,3 +243,33 @@ fn task_configurations_or_each_arms_reason() {
         "{e}"
     );
 }
+
+/// The command line states a bad arm, and an unreachable task, with exit 2.
+#[cfg(feature = "cli")]
+#[test]
+fn solve_names_a_bad_arm_with_exit_2() {
+    use crate::common::{temp_dir_made, workcell};
+    let dir = temp_dir_made("arm-cells", "cli");
+    let run = |name: &str, text: String| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let o = workcell(&["solve", path.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let err = run("home.json", one_arm(|a| a["home"] = json!([2.9, 0.0])));
+    assert!(
+        err.contains("home.json") && err.contains("\"A1\"") && err.contains("robots[0].home[0]"),
+        "{err}"
+    );
+    let far = cell_of(
+        vec![arm("A1", 0.0)],
+        json!([]),
+        json!([{"name": "far", "at": [5.0, 0.0], "duration": 1}]),
+    );
+    let err = run("far.json", far);
+    assert!(
+        err.contains("tasks[0].at") && err.contains("out of reach"),
+        "{err}"
+    );
+}
