@@ -4,7 +4,7 @@
 use super::InputError;
 use crate::collision::Body;
 use crate::geometry::{ConvexPolygon, Parts};
-use crate::motion::{forward_kinematics, JointLimits, Pose, Trajectory};
+use crate::motion::{forward_kinematics, ArmMotion, JointLimits, JointSample, Pose, Trajectory};
 use std::path::PathBuf;
 
 /// A robot of the cell: a rigid body that glides (contract section 3) or a planar arm
@@ -126,15 +126,7 @@ impl CellRobot {
     pub fn at_home(&self) -> Vec<(&[ConvexPolygon], Pose)> {
         match &self.kind {
             RobotKind::Rigid(r) => vec![(r.pieces(), r.home)],
-            RobotKind::Arm(a) => {
-                let lengths: Vec<f64> = a.links.iter().map(|l| l.0).collect();
-                (a.links.iter().enumerate())
-                    .map(|(k, (_, body))| {
-                        let pose = forward_kinematics(a.base, &lengths, &a.home, k);
-                        (body.parts(), pose)
-                    })
-                    .collect()
-            }
+            RobotKind::Arm(a) => a.placed(&a.home),
         }
     }
 
@@ -222,6 +214,73 @@ impl RigidRobot {
             Some(parts) => Body::robot_of_parts(name, parts.clone(), trajectory),
             None => Body::robot(name, self.shape.clone(), trajectory),
         }
+    }
+}
+
+impl ArmRobot {
+    /// The link lengths.
+    ///
+    /// ```
+    /// use workcell::cell::ArmRobot;
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, Pose};
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.1, -0.1], [1.1, -0.1], [1.1, 0.1], [-0.1, 0.1]])?])?;
+    /// let limits = JointLimits { range: vec![None; 2], max_speed: vec![1.0; 2], max_accel: vec![2.0; 2] };
+    /// let arm = ArmRobot { base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar.clone()), (0.5, bar)], home: vec![0.0; 2], limits };
+    /// assert_eq!(arm.lengths(), [1.0, 0.5]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn lengths(&self) -> Vec<f64> {
+        self.links.iter().map(|l| l.0).collect()
+    }
+
+    /// The arm, named `name`, as checker bodies (one per link) moving through `joints`.
+    ///
+    /// # Panics
+    /// When the samples do not make a trajectory of this arm (see [`ArmMotion::new`]): the
+    /// caller's samples come from the arm's own planned moves.
+    ///
+    /// ```
+    /// use workcell::cell::ArmRobot;
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, JointSample, Pose};
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.1, -0.1], [1.1, -0.1], [1.1, 0.1], [-0.1, 0.1]])?])?;
+    /// let limits = JointLimits { range: vec![None; 2], max_speed: vec![1.0; 2], max_accel: vec![2.0; 2] };
+    /// let arm = ArmRobot { base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar.clone()), (1.0, bar)], home: vec![0.0; 2], limits };
+    /// let still = [JointSample { t: 0.0, q: vec![0.0, 0.0], qd: vec![0.0, 0.0] }];
+    /// let bodies = arm.bodies("A1", still.to_vec());
+    /// assert_eq!((bodies.len(), bodies[1].link()), (2, Some(1)));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn bodies(&self, name: &str, joints: Vec<JointSample>) -> Vec<Body> {
+        let radii = self.links.iter().map(|l| l.1.hull().radius()).collect();
+        let motion = ArmMotion::new(self.base, self.lengths(), radii, joints)
+            .expect("an arm's planned samples make its trajectory");
+        Body::arm(
+            name,
+            motion,
+            self.links.iter().map(|l| l.1.clone()).collect(),
+        )
+    }
+
+    /// Each link's convex pieces placed at joint angles `q`.
+    ///
+    /// ```
+    /// use workcell::cell::ArmRobot;
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, Pose};
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.1, -0.1], [1.1, -0.1], [1.1, 0.1], [-0.1, 0.1]])?])?;
+    /// let limits = JointLimits { range: vec![None; 2], max_speed: vec![1.0; 2], max_accel: vec![2.0; 2] };
+    /// let arm = ArmRobot { base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar.clone()), (1.0, bar)], home: vec![0.0; 2], limits };
+    /// let placed = arm.placed(&[0.0, 0.0]);
+    /// assert_eq!(placed[1].1, Pose::new(1.0, 0.0, 0.0)); // the second link at the elbow
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn placed(&self, q: &[f64]) -> Vec<(&[ConvexPolygon], Pose)> {
+        let lengths = self.lengths();
+        (self.links.iter().enumerate())
+            .map(|(k, (_, body))| (body.parts(), forward_kinematics(self.base, &lengths, q, k)))
+            .collect()
     }
 }
 

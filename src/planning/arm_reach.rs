@@ -3,11 +3,14 @@
 //! stays clear of them, both proven by the checker.
 
 use super::joint_move::JointMove;
+use super::PlannedMove;
 use crate::cell::ArmRobot;
 use crate::collision::{check, Arm, Body, CheckOptions, Scene};
 use crate::geometry::Parts;
+use crate::geometry::Vec2;
 use crate::motion::{
-    inverse_kinematics, IkSettings, JointLimits, JointSample, Pose, ToolGoal, Unreachable,
+    inverse_kinematics, tool_pose, IkSettings, JointLimits, JointSample, Pose, Sample, ToolGoal,
+    Unreachable,
 };
 
 /// An arm as the planner takes it: where it stands, its links and its joints' limits.
@@ -153,6 +156,55 @@ impl ArmModel {
             return Err(Refusal::InsideFixture);
         }
         Ok(clear)
+    }
+
+    /// The joint-space move as a planned move (see [`PlannedMove::joints`]): its joints,
+    /// and the tool's pose and velocity at the same times, and the tool's path.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, Pose};
+    /// use workcell::planning::{joint_move, ArmModel};
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.05, -0.05], [1.05, -0.05], [1.05, 0.05], [-0.05, 0.05]])?])?;
+    /// let limits = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![1.0] };
+    /// let arm = ArmModel { name: "A1".into(), base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar)], limits };
+    /// let quarter = arm.planned(&joint_move(&[0.0], &[1.0], &arm.limits, 4));
+    /// assert_eq!(quarter.samples.len(), quarter.joints.len());
+    /// let end = quarter.samples.last().unwrap();
+    /// assert!((end.pos.x - 1f64.cos()).abs() < 1e-12 && (end.theta - 1.0).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn planned(&self, motion: &JointMove) -> PlannedMove {
+        let lengths = self.lengths();
+        let samples: Vec<Sample> = (motion.samples.iter())
+            .map(|s| {
+                let tool = tool_pose(self.base, &lengths, &s.q);
+                // d/dt of the tool point: each link turns at the sum of the rates before it.
+                let (mut angle, mut rate) = (self.base.theta, 0.0);
+                let mut vel = Vec2::zeros();
+                for (k, &l) in lengths.iter().enumerate() {
+                    angle += s.q[k];
+                    rate += s.qd[k];
+                    vel += Vec2::new(-angle.sin(), angle.cos()) * (l * rate);
+                }
+                Sample {
+                    t: s.t,
+                    pos: tool.pos,
+                    theta: tool.theta,
+                    vel,
+                    omega: rate,
+                }
+            })
+            .collect();
+        let mut path: Vec<Vec2> = samples.iter().map(|s| s.pos).collect();
+        path.dedup();
+        PlannedMove {
+            duration: motion.duration,
+            path,
+            samples,
+            primitives: Vec::new(),
+            joints: motion.samples.clone(),
+        }
     }
 
     /// Whether the joint-space move keeps every link δ clear of every fixture (certified by

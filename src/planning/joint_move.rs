@@ -32,6 +32,9 @@ impl JointMove {
     }
 }
 
+/// Sample times of one move closer than this share of its duration are one time.
+const SAME_TIME: f64 = 1e-9;
+
 /// The angle joint `j` turns by from `a` to `b`: `b − a` for a joint with limits (both ends
 /// within them, the way between is too); the shorter way round, in (−π, π], for one without.
 fn turn(limits: &JointLimits, j: usize, a: f64, b: f64) -> f64 {
@@ -46,6 +49,27 @@ fn turn(limits: &JointLimits, j: usize, a: f64, b: f64) -> f64 {
             }
         }
     }
+}
+
+/// The duration of [`joint_move`] from `from` to `to`, bit for bit, without its samples: the
+/// slowest joint's fastest rest-to-rest time. A lower bound of every joint-space path
+/// between them (each joint turns at least as far, and the rest-to-rest time is
+/// subadditive).
+///
+/// ```
+/// use workcell::motion::JointLimits;
+/// use workcell::planning::{joint_move, joint_move_time};
+/// let limits = JointLimits { range: vec![None, Some([-2.0, 2.0])], max_speed: vec![1.0, 2.0], max_accel: vec![1.0, 1.0] };
+/// let (a, b) = ([0.0, 0.0], [4.0, 1.0]);
+/// assert_eq!(joint_move_time(&a, &b, &limits), joint_move(&a, &b, &limits, 4).duration);
+/// ```
+pub fn joint_move_time(from: &[f64], to: &[f64], limits: &JointLimits) -> f64 {
+    (0..from.len())
+        .map(|j| {
+            let turn = turn(limits, j, from[j], to[j]).abs();
+            Trapezoid::fastest(turn, limits.max_speed[j], limits.max_accel[j]).duration
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The synchronised rest-to-rest move from joint angles `from` to `to`.
@@ -72,10 +96,7 @@ pub fn joint_move(
     let turns: Vec<f64> = (0..from.len())
         .map(|j| turn(limits, j, from[j], to[j]))
         .collect();
-    let fastest = |j: usize| {
-        Trapezoid::fastest(turns[j].abs(), limits.max_speed[j], limits.max_accel[j]).duration
-    };
-    let duration = (0..from.len()).map(fastest).fold(0.0, f64::max);
+    let duration = joint_move_time(from, to, limits);
     let profiles: Vec<Trapezoid> = (0..from.len())
         .map(|j| {
             let (v, a) = (limits.max_speed[j], limits.max_accel[j]);
@@ -88,14 +109,17 @@ pub fn joint_move(
         .map(|t| t.clamp(0.0, duration))
         .collect();
     times.sort_by(f64::total_cmp);
-    times.dedup();
+    // Phases of different joints that change within rounding of each other change at one
+    // time: times a few ulps apart would merge when the move is shifted or reversed.
+    times.dedup_by(|b, a| *b - *a <= SAME_TIME * duration);
     let cuts = samples_per_phase.max(1);
     let mut at: Vec<f64> = Vec::new();
     for w in times.windows(2) {
         for k in 0..cuts {
             let t = w[0] + (w[1] - w[0]) * k as f64 / cuts as f64;
-            // Strictly increasing, whatever rounding does to phases of a few ulps.
-            if at.last().is_none_or(|&last| t > last) && t < duration {
+            // Strictly increasing, apart by more than rounding, and short of the end.
+            let gap = SAME_TIME * duration;
+            if at.last().is_none_or(|&last| t - last > gap) && duration - t > gap {
                 at.push(t);
             }
         }

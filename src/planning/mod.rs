@@ -94,7 +94,7 @@ mod visibility;
 
 pub use crate::motion::rest_to_rest_time;
 pub use arm_reach::{ArmModel, Refusal};
-pub use joint_move::{joint_move, JointMove};
+pub use joint_move::{joint_move, joint_move_time, JointMove};
 pub use joint_paths::{JointPath, JointPathSettings};
 pub use timed::{time_primitives, Primitive};
 pub use turn_apart::plan_move;
@@ -102,7 +102,7 @@ pub use turn_apart::plan_move;
 #[cfg(doc)]
 use crate::geometry::ConvexPolygon;
 use crate::geometry::Vec2;
-use crate::motion::Sample;
+use crate::motion::{JointSample, Sample};
 
 /// A robot's kinematic limits.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,6 +156,10 @@ pub struct PlannedMove {
     /// The rest-to-rest pieces the move is made of, one after the other (three for a move
     /// that turns apart): [`time_primitives`] of them gives these samples again.
     pub primitives: Vec<Primitive>,
+    /// For an arm's move, the joint angles and rates at each of `samples`' times: the
+    /// motion itself, which the checker certifies (`samples` and `path` then follow the
+    /// tool, for pictures, and `primitives` is empty). Empty for a rigid robot.
+    pub joints: Vec<JointSample>,
 }
 
 /// Why a move could not be planned. Obstacle indices are positions in the slice given.

@@ -10,7 +10,7 @@ use super::sampling::Timing;
 use super::{PlannedMove, RobotLimits};
 use crate::geometry::Vec2;
 use crate::motion::{rest_to_rest_time, Trapezoid};
-use crate::motion::{Pose, Sample};
+use crate::motion::{JointSample, Pose, Sample};
 
 /// One rest-to-rest piece of a move: G along `path`, stopping at every waypoint, while the
 /// angle turns from `theta` by `turn` as one profile over the whole piece. A turn in place
@@ -155,6 +155,7 @@ pub(super) fn time_primitive(
         path: path.clone(),
         samples: timing.samples(samples_per_phase),
         primitives: vec![primitive.clone()],
+        joints: Vec::new(),
     }
 }
 
@@ -190,8 +191,13 @@ pub(super) fn chain(legs: &[PlannedMove]) -> PlannedMove {
     let mut samples = legs[0].samples.clone();
     let mut path = legs[0].path.clone();
     let mut primitives = legs[0].primitives.clone();
+    let mut joints = legs[0].joints.clone();
     let mut start = legs[0].duration;
     for leg in &legs[1..] {
+        joints.extend(leg.joints.iter().skip(1).map(|s| JointSample {
+            t: start + s.t,
+            ..s.clone()
+        }));
         // A leg's first sample is the previous leg's last: at rest, at the same pose.
         samples.extend(leg.samples[1..].iter().map(|s| Sample {
             t: start + s.t,
@@ -209,6 +215,7 @@ pub(super) fn chain(legs: &[PlannedMove]) -> PlannedMove {
         path,
         samples,
         primitives,
+        joints,
     }
 }
 
@@ -248,6 +255,13 @@ impl PlannedMove {
                 })
                 .collect(),
             primitives: self.primitives.clone(),
+            joints: (self.joints.iter())
+                .map(|s| JointSample {
+                    t: s.t * factor,
+                    q: s.q.clone(),
+                    qd: s.qd.iter().map(|v| v / factor).collect(),
+                })
+                .collect(),
         }
     }
 }

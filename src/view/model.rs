@@ -325,9 +325,11 @@ impl Model {
             .iter()
             .filter_map(|r| r.change.as_ref())
             .collect();
-        for (r, robot) in robots.iter_mut().enumerate() {
-            let home = cell.rigid(r).home;
-            robot.home = Some([home.pos.x, home.pos.y, home.theta]);
+        // One lane per robot of the cell: an arm's on its first link.
+        for (r, robot) in robots.iter_mut().filter(|v| v.leads()).enumerate() {
+            // An arm's base marks where it stands; its home is its joints'.
+            robot.home =
+                (cell.robots[r].as_rigid()).map(|b| [b.home.pos.x, b.home.pos.y, b.home.theta]);
             if let Some((_, tasks)) = result.sequences.get(r) {
                 robot.order = tasks.iter().filter_map(|t| task_index(t)).collect();
             }

@@ -5,7 +5,8 @@
 
 use crate::cell::{Cell, InputError};
 use crate::motion::{IkSettings, ToolGoal};
-use crate::planning::{ArmModel, Refusal};
+use crate::planning::{joint_move_time, ArmModel, Refusal};
+use crate::wcp::sequencer::node_task;
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -43,6 +44,143 @@ impl Configurations {
     }
 }
 
+/// Which configuration each arm takes at each task it may do (an index into
+/// [`Configurations::at`]): what turns an arm's task into one node of the sequencer's graph.
+/// The solver changes it between sequencing rounds (see `choose.rs`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Assignment {
+    configurations: Arc<Configurations>,
+    /// `[robot][task]`: the index of the configuration taken (0 where there is none).
+    chosen: Vec<Vec<usize>>,
+}
+
+impl Assignment {
+    /// Each arm at each task in the configuration it reaches soonest from home (the first
+    /// of equals), as the sequencer's first guess.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::motion::IkSettings;
+    /// use workcell::wcp::{task_configurations, Assignment};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &IkSettings::default())?);
+    /// let chosen = Assignment::nearest_home(&cell, found);
+    /// assert_eq!(chosen.joints(&cell, 0, 1), None); // a rigid robot has no joints
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn nearest_home(cell: &Cell, configurations: Arc<Configurations>) -> Assignment {
+        let chosen = (0..cell.robots.len())
+            .map(|r| {
+                let Some(arm) = cell.robots[r].as_arm() else {
+                    return Vec::new();
+                };
+                (0..cell.tasks.len())
+                    .map(|t| {
+                        let time = |q: &Configuration| joint_move_time(&arm.home, q, &arm.limits);
+                        (configurations.at(r, t).iter().enumerate())
+                            .min_by(|(_, a), (_, b)| time(a).total_cmp(&time(b)))
+                            .map_or(0, |(k, _)| k)
+                    })
+                    .collect()
+            })
+            .collect();
+        Assignment {
+            configurations,
+            chosen,
+        }
+    }
+
+    /// The configurations found, whatever was chosen.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::wcp::{task_configurations, Assignment, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &SolveOptions::default().ik)?);
+    /// let chosen = Assignment::nearest_home(&cell, found);
+    /// // A1 at weld-1 (task 0, node 1): elbow up and elbow down; the other one is chosen now.
+    /// assert_eq!(chosen.configurations().at(0, 0).len(), 2);
+    /// let other = chosen.with(0, 0, 1 - chosen.index(0, 0));
+    /// assert_ne!(other.joints(&cell, 0, 1), chosen.joints(&cell, 0, 1));
+    /// assert_eq!(other.joints(&cell, 0, 0), Some(&cell.robots[0].as_arm().unwrap().home[..]));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn configurations(&self) -> &Configurations {
+        &self.configurations
+    }
+
+    /// The index of arm `r`'s configuration at task `t`.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::wcp::{task_configurations, Assignment, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &SolveOptions::default().ik)?);
+    /// let chosen = Assignment::nearest_home(&cell, found);
+    /// // A1 at weld-1 (task 0, node 1): elbow up and elbow down; the other one is chosen now.
+    /// assert_eq!(chosen.configurations().at(0, 0).len(), 2);
+    /// let other = chosen.with(0, 0, 1 - chosen.index(0, 0));
+    /// assert_ne!(other.joints(&cell, 0, 1), chosen.joints(&cell, 0, 1));
+    /// assert_eq!(other.joints(&cell, 0, 0), Some(&cell.robots[0].as_arm().unwrap().home[..]));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn index(&self, r: usize, t: usize) -> usize {
+        self.chosen
+            .get(r)
+            .and_then(|c| c.get(t))
+            .copied()
+            .unwrap_or(0)
+    }
+
+    /// The same, with arm `r` at task `t` in its configuration `k`.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::wcp::{task_configurations, Assignment, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &SolveOptions::default().ik)?);
+    /// let chosen = Assignment::nearest_home(&cell, found);
+    /// // A1 at weld-1 (task 0, node 1): elbow up and elbow down; the other one is chosen now.
+    /// assert_eq!(chosen.configurations().at(0, 0).len(), 2);
+    /// let other = chosen.with(0, 0, 1 - chosen.index(0, 0));
+    /// assert_ne!(other.joints(&cell, 0, 1), chosen.joints(&cell, 0, 1));
+    /// assert_eq!(other.joints(&cell, 0, 0), Some(&cell.robots[0].as_arm().unwrap().home[..]));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn with(&self, r: usize, t: usize, k: usize) -> Assignment {
+        let mut next = self.clone();
+        next.chosen[r][t] = k;
+        next
+    }
+
+    /// Arm `r`'s joint angles at node `node` (0: home, `1 + t`: task `t`); `None` for a
+    /// rigid robot, or a task the arm cannot reach.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::wcp::{task_configurations, Assignment, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &SolveOptions::default().ik)?);
+    /// let chosen = Assignment::nearest_home(&cell, found);
+    /// // A1 at weld-1 (task 0, node 1): elbow up and elbow down; the other one is chosen now.
+    /// assert_eq!(chosen.configurations().at(0, 0).len(), 2);
+    /// let other = chosen.with(0, 0, 1 - chosen.index(0, 0));
+    /// assert_ne!(other.joints(&cell, 0, 1), chosen.joints(&cell, 0, 1));
+    /// assert_eq!(other.joints(&cell, 0, 0), Some(&cell.robots[0].as_arm().unwrap().home[..]));
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn joints<'a>(&'a self, cell: &'a Cell, r: usize, node: usize) -> Option<&'a [f64]> {
+        let arm = cell.robots[r].as_arm()?;
+        match node {
+            0 => Some(&arm.home),
+            n => {
+                let t = node_task(n);
+                (self.configurations.at(r, t).get(self.index(r, t))).map(|q| &q[..])
+            }
+        }
+    }
+}
+
 /// Every arm's configurations at every task it may do. Refuses (naming the task and each
 /// arm's reason) a task that none of its robots can do: a rigid robot can always go there
 /// (the reader refused task poses inside fixtures), an arm only with a configuration.
@@ -57,36 +195,7 @@ impl Configurations {
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
 pub fn task_configurations(cell: &Cell, ik: &IkSettings) -> Result<Configurations, InputError> {
-    let fixtures = cell.obstacle_bodies();
-    let jobs: Vec<(usize, usize)> = (0..cell.robots.len())
-        .filter(|&r| cell.robots[r].as_arm().is_some())
-        .flat_map(|r| {
-            (cell.tasks.iter().enumerate())
-                .filter(move |(_, task)| task.robots.contains(&r))
-                .map(move |(t, _)| (r, t))
-        })
-        .collect();
-    let found: Vec<Result<Vec<Vec<f64>>, Refusal>> = jobs
-        .par_iter()
-        .map(|&(r, t)| {
-            let arm = cell.robots[r].as_arm().expect("arms only");
-            let task = &cell.tasks[t];
-            let goal = ToolGoal {
-                pos: task.at.pos,
-                theta: (!task.free_angle).then_some(task.at.theta),
-            };
-            ArmModel::new(&cell.robots[r].name, arm).configurations(goal, &fixtures, cell.delta, ik)
-        })
-        .collect();
-    let mut per_robot = vec![vec![Vec::new(); cell.tasks.len()]; cell.robots.len()];
-    let mut refusals: Vec<Vec<(usize, Refusal)>> = vec![Vec::new(); cell.tasks.len()];
-    for (&(r, t), result) in jobs.iter().zip(found) {
-        match result {
-            Ok(list) => per_robot[r][t] = list.into_iter().map(Configuration::from).collect(),
-            Err(why) => refusals[t].push((r, why)),
-        }
-    }
-    let configurations = Configurations { per_robot };
+    let (configurations, refusals) = found(cell, ik);
     for (t, task) in cell.tasks.iter().enumerate() {
         let able =
             |&r: &usize| cell.robots[r].as_rigid().is_some() || !configurations.at(r, t).is_empty();
@@ -104,15 +213,59 @@ pub fn task_configurations(cell: &Cell, ik: &IkSettings) -> Result<Configuration
     Ok(configurations)
 }
 
-/// Refuses a cell with an arm until the solver schedules arms, after refusing (with
+/// Per task, each arm that cannot do it and why.
+type Refusals = Vec<Vec<(usize, Refusal)>>;
+
+/// Every arm's configurations at every task it may do, and the refusals.
+fn found(cell: &Cell, ik: &IkSettings) -> (Configurations, Refusals) {
+    let fixtures = cell.obstacle_bodies();
+    let jobs: Vec<(usize, usize)> = (0..cell.robots.len())
+        .filter(|&r| cell.robots[r].as_arm().is_some())
+        .flat_map(|r| {
+            (cell.tasks.iter().enumerate())
+                .filter(move |(_, task)| task.robots.contains(&r))
+                .map(move |(t, _)| (r, t))
+        })
+        .collect();
+    let results: Vec<Result<Vec<Vec<f64>>, Refusal>> = jobs
+        .par_iter()
+        .map(|&(r, t)| {
+            let arm = cell.robots[r].as_arm().expect("arms only");
+            let task = &cell.tasks[t];
+            let goal = ToolGoal {
+                pos: task.at.pos,
+                theta: (!task.free_angle).then_some(task.at.theta),
+            };
+            ArmModel::new(&cell.robots[r].name, arm).configurations(goal, &fixtures, cell.delta, ik)
+        })
+        .collect();
+    let mut per_robot = vec![vec![Vec::new(); cell.tasks.len()]; cell.robots.len()];
+    let mut refusals: Refusals = vec![Vec::new(); cell.tasks.len()];
+    for (&(r, t), result) in jobs.iter().zip(results) {
+        match result {
+            Ok(list) => per_robot[r][t] = list.into_iter().map(Configuration::from).collect(),
+            Err(why) => refusals[t].push((r, why)),
+        }
+    }
+    (Configurations { per_robot }, refusals)
+}
+
+/// Every arm's configurations at every task it may do, none where it cannot reach: as
+/// [`task_configurations`], without refusing anything (a library's store plans what it can).
+pub(crate) fn configurations_found(cell: &Cell, ik: &IkSettings) -> Configurations {
+    found(cell, ik).0
+}
+
+/// Refuses a cell with an arm until `evaluate` replays arms, after refusing (with
 /// [`task_configurations`]) any task that no robot can reach: the field names the arm.
 pub(super) fn refuse_arms(cell: &Cell) -> Result<(), InputError> {
     let Some(r) = cell.robots.iter().position(|r| r.as_arm().is_some()) else {
         return Ok(());
     };
     task_configurations(cell, &IkSettings::default())?;
-    let reason = "an arm (contract section 7): `workcell solve` and `evaluate` do not schedule \
-                  arms yet; `workcell check` checks an arm's trajectory (section 6)";
+    let reason = "an arm (contract section 7): `workcell evaluate` does not replay arms yet; \
+                  `workcell solve` schedules them and `workcell check` checks the scene it \
+                  exports";
     Err(cell.error(
         Some(&cell.robots[r].name),
         format!("robots[{r}].links"),

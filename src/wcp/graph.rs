@@ -48,7 +48,7 @@ impl WcpGraph {
     /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
     /// let store = MoveStore::new(&cell, &PlannerOptions::default());
     /// store.get(0, 0, 1).unwrap(); // one move planned: its arcs are exact, the others bounds
-    /// let g = WcpGraph::new(&cell, &store, &bounds(&cell)).graph;
+    /// let g = WcpGraph::new(&cell, &store, &bounds(&cell, store.assignment())).graph;
     /// // 2 homes + 4 tasks; each robot: 5 nodes, 5·4 ordered pairs.
     /// assert_eq!((g.node_count(), g.edge_count()), (6, 40));
     /// assert_eq!(g.edge_weights().filter(|a| a.exact).count(), 2); // R1 home -> weld-1 and back
@@ -96,7 +96,7 @@ impl WcpGraph {
     /// use workcell::wcp::{bounds, MoveStore, WcpGraph};
     /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
     /// let store = MoveStore::new(&cell, &PlannerOptions::default());
-    /// let file = WcpGraph::new(&cell, &store, &bounds(&cell)).export(&cell);
+    /// let file = WcpGraph::new(&cell, &store, &bounds(&cell, store.assignment())).export(&cell);
     /// assert_eq!((file.nodes[0].name.as_str(), file.nodes[0].kind), ("R1", "home"));
     /// assert_eq!((file.nodes[2].name.as_str(), file.nodes[2].kind), ("weld-1", "task"));
     /// let arc = file.arcs.iter().find(|a| a.robot == "R2" && a.from == "R2" && a.to == "weld-4").unwrap();

@@ -30,7 +30,7 @@ mod sequence;
 pub mod sequencer;
 mod time_axis;
 
-pub use configurations::{task_configurations, Configuration, Configurations};
+pub use configurations::{task_configurations, Assignment, Configuration, Configurations};
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
     describe, solve, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved,

@@ -2,6 +2,7 @@
 //! remedies, which moves are planned up front, and the settings of every stage below.
 
 use crate::collision::CheckOptions;
+use crate::motion::IkSettings;
 use crate::planning::PlannerOptions;
 use crate::wcp::sequencer::SequencerOptions;
 use std::time::Duration;
@@ -38,6 +39,11 @@ pub struct SolveOptions {
     pub time_limit: Option<Duration>,
     /// Which moves are planned before sequencing.
     pub planning: Planning,
+    /// How arms' configurations at the tasks are found (inverse kinematics).
+    pub ik: IkSettings,
+    /// Whether the solver may change which configuration each arm takes at each task; when
+    /// not, each keeps the one it reaches soonest from home.
+    pub choose_configurations: bool,
 }
 /// Which moves [`prepare`](crate::wcp::prepare) plans and certifies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -69,6 +75,8 @@ impl Default for SolveOptions {
             check: CheckOptions::default(),
             time_limit: None,
             planning: Planning::Auto,
+            ik: IkSettings::default(),
+            choose_configurations: true,
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Before sequencing: the lower bounds of every move and the moves planned up front
 //! ([`prepare`]), and what a solve reports as it goes ([`Progress`], [`StageTimes`]).
 
-use super::configurations::refuse_arms;
+use super::configurations::{task_configurations, Assignment};
 use super::graph::{check_reachable, plan_reaches};
 use super::moves::{bounds, robot_nodes, MoveStore};
 use super::options::{Planning, SolveOptions, AUTO_ALL_MAX_MOVES};
@@ -101,16 +101,21 @@ pub fn prepare(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Prepared, InputError> {
-    refuse_arms(cell)?;
     let deadline = opts
         .time_limit
         .and_then(|limit| Instant::now().checked_add(limit));
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    let bounds = Arc::new(bounds(cell));
+    // Every task reached by one of its robots, or refused with each arm's reason.
+    let found = match cell.robots.iter().any(|r| r.as_arm().is_some()) {
+        true => task_configurations(cell, &opts.ik)?,
+        false => Default::default(),
+    };
+    let assignment = Assignment::nearest_home(cell, Arc::new(found));
+    let moves = MoveStore::with_assignment(cell, &opts.planner, assignment);
+    let bounds = Arc::new(bounds(cell, moves.assignment()));
     times.graph = clock.elapsed();
     let clock = Instant::now();
-    let moves = MoveStore::new(cell, &opts.planner);
     let all_moves: usize = (0..cell.robots.len())
         .map(|r| {
             let n = robot_nodes(cell, r).len();

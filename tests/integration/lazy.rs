@@ -63,8 +63,8 @@ fn bounds_never_exceed_the_planned_times() {
     let mut checked = 0;
     for seed in 0..6u64 {
         let cell = cell(3, 10, [0, 2, 4][seed as usize % 3], seed);
-        let b = bounds(&cell);
         let store = wcp::MoveStore::new(&cell, &Default::default());
+        let b = bounds(&cell, store.assignment());
         for r in 0..cell.robots.len() {
             let nodes = robot_nodes(&cell, r);
             for &a in &nodes {

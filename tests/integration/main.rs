@@ -10,6 +10,7 @@
 
 mod arm_cells;
 mod arm_files;
+mod arm_solve;
 mod arms;
 mod boundaries;
 mod cell_file;

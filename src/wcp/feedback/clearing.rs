@@ -7,7 +7,7 @@
 //! checker must prove the pair at least δ apart throughout. What happens after the window is
 //! the next round's business.
 
-use crate::cell::Cell;
+use crate::cell::{Cell, RobotKind};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::motion::{Sample, Trajectory};
 use crate::wcp::schedule::RobotSchedule;
@@ -29,17 +29,26 @@ pub(super) fn clears(
     (t0, t1): (f64, f64),
     opts: &CheckOptions,
 ) -> bool {
-    let body = |r: usize, s: &RobotSchedule| -> Option<Body> {
-        let trajectory = Trajectory::new(window(&s.samples, t0, t1)).ok()?;
-        Some(cell.rigid(r).body(&cell.robots[r].name, trajectory))
+    let bodies = |r: usize, s: &RobotSchedule| -> Option<Vec<Body>> {
+        let name = &cell.robots[r].name;
+        let (first, last) = window(&s.samples, t0, t1);
+        match &cell.robots[r].kind {
+            RobotKind::Rigid(rigid) => {
+                let trajectory = Trajectory::new(s.samples[first..=last].to_vec()).ok()?;
+                Some(vec![rigid.body(name, trajectory)])
+            }
+            // An arm's joint samples share the tool's times.
+            RobotKind::Arm(arm) => Some(arm.bodies(name, s.joints[first..=last].to_vec())),
+        }
     };
-    let (Some(a), Some(b)) = (body(x, sx), body(y, sy)) else {
+    let (Some(mut a), Some(b)) = (bodies(x, sx), bodies(y, sy)) else {
         return false;
     };
+    a.extend(b);
     let report = check(
         &Scene {
             delta: cell.delta,
-            bodies: vec![a, b],
+            bodies: a,
         },
         opts,
     );
@@ -50,12 +59,13 @@ pub(super) fn clears(
     }
 }
 
-/// The samples that pose the robot over `[t0, t1]`: from the last at or before `t0` to the
-/// first at or after `t1`. Between them the pose is interpolated exactly as in the whole.
-fn window(samples: &[Sample], t0: f64, t1: f64) -> Vec<Sample> {
+/// The first and last indices of the samples that pose the robot over `[t0, t1]`: from the
+/// last at or before `t0` to the first at or after `t1`. Between them the pose is
+/// interpolated exactly as in the whole.
+fn window(samples: &[Sample], t0: f64, t1: f64) -> (usize, usize) {
     let first = samples.partition_point(|s| s.t <= t0).saturating_sub(1);
     let last = samples.partition_point(|s| s.t < t1).min(samples.len() - 1);
-    samples[first..=last].to_vec()
+    (first, last)
 }
 
 /// The least `p` in `(lo, hi]` for which `f(p)` succeeds, to within the resolution of a scan
@@ -109,7 +119,7 @@ mod tests {
             omega: 0.0,
         };
         let samples: Vec<Sample> = [0.0, 1.0, 2.0, 3.0, 4.0].map(s).to_vec();
-        let ts = |w: Vec<Sample>| w.iter().map(|s| s.t).collect::<Vec<_>>();
+        let ts = |(a, b): (usize, usize)| samples[a..=b].iter().map(|s| s.t).collect::<Vec<_>>();
         assert_eq!(ts(window(&samples, 1.5, 2.5)), vec![1.0, 2.0, 3.0]);
         assert_eq!(ts(window(&samples, 1.0, 2.0)), vec![1.0, 2.0]);
         assert_eq!(

@@ -7,14 +7,16 @@
 //! task `t`. A move and its reverse visit the same poses (the motion model is symmetric in
 //! time), so one plan and one certificate serve both directions.
 
+use super::configurations::Assignment;
 use super::sequencer::{node_task, task_node};
-use super::sequencer::{BoundLimits, Bounds};
-use crate::cell::{Cell, RigidRobot};
+use super::sequencer::{BoundLimits, Bounds, JointNodes};
+use crate::cell::{Cell, RigidRobot, RobotKind};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::geometry::{ConvexPolygon, Vec2};
-use crate::motion::{Pose, Sample, Trajectory};
+use crate::motion::{tool_pose, Pose, Sample, Trajectory};
 use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use std::fmt;
+use std::sync::Arc;
 
 mod store;
 pub use store::MoveStore;
@@ -42,6 +44,10 @@ pub enum MoveFailure {
     },
     /// The checker could neither certify nor refute the move (it grazes δ).
     NotCertified,
+    /// An arm has no configuration at one of the move's ends.
+    NoConfiguration,
+    /// An arm's straight joint-space move hits a fixture and no path around it was found.
+    NoJointPath,
 }
 
 impl fmt::Display for MoveFailure {
@@ -58,6 +64,15 @@ impl fmt::Display for MoveFailure {
                 f,
                 "the planned move comes within delta of obstacle \"{obstacle}\" at t = {time:.6} \
                  (refused by the checker)"
+            ),
+            MoveFailure::NoConfiguration => write!(
+                f,
+                "the arm has no joint angles that put its tool at the task clear of the fixtures"
+            ),
+            MoveFailure::NoJointPath => write!(
+                f,
+                "the arm's straight joint-space move hits a fixture and no joint-space path \
+                 around it was found"
             ),
             MoveFailure::NotCertified => {
                 write!(
@@ -166,6 +181,7 @@ pub fn certified_move(
 
 /// The cell's obstacles as the planner takes them: every convex piece (an obstacle of parts
 /// gives each part), with the obstacle each belongs to.
+#[derive(Clone)]
 pub(crate) struct Fixtures {
     pub pieces: Vec<ConvexPolygon>,
     pub owner: Vec<usize>,
@@ -274,27 +290,51 @@ pub(crate) fn certify(
 /// use workcell::planning::PlannerOptions;
 /// use workcell::wcp::{bounds, MoveStore};
 /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-/// let (lower, store) = (bounds(&cell), MoveStore::new(&cell, &PlannerOptions::default()));
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let lower = bounds(&cell, store.assignment());
 /// // Never longer than the certified move: R2 from home around the fixture to weld-1.
 /// assert!(lower.bound(1, 0, 1) <= store.duration(1, 0, 1).unwrap());
 /// assert!(lower.bound(1, 0, 1) > 0.0);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn bounds(cell: &Cell) -> Bounds {
+pub fn bounds(cell: &Cell, assignment: &Assignment) -> Bounds {
     let pose = |p: &Pose| (p.pos, p.theta);
-    Bounds::new(
-        (0..cell.robots.len())
-            .map(|r| cell.rigid(r))
-            .map(|r| BoundLimits {
-                max_speed: r.max_speed,
-                max_accel: r.max_accel,
-                max_angular_accel: r.max_accel / r.shape.radius(),
-                max_turn_rate: r.max_turn_rate,
-            })
-            .collect(),
-        (0..cell.robots.len())
-            .map(|r| pose(&cell.rigid(r).home))
-            .collect(),
+    let rigid = |r: usize| cell.robots[r].as_rigid();
+    // An arm's limits and home here only place it among the tasks: its own bounds are in
+    // joint space.
+    let limits = (0..cell.robots.len()).map(|r| match rigid(r) {
+        Some(r) => BoundLimits {
+            max_speed: r.max_speed,
+            max_accel: r.max_accel,
+            max_angular_accel: r.max_accel / r.shape.radius(),
+            max_turn_rate: r.max_turn_rate,
+        },
+        None => BoundLimits {
+            max_speed: 1.0,
+            max_accel: 1.0,
+            max_angular_accel: 1.0,
+            max_turn_rate: 1.0,
+        },
+    });
+    let homes = (0..cell.robots.len()).map(|r| match &cell.robots[r].kind {
+        RobotKind::Rigid(b) => pose(&b.home),
+        RobotKind::Arm(a) => {
+            let lengths: Vec<f64> = a.links.iter().map(|l| l.0).collect();
+            pose(&tool_pose(a.base, &lengths, &a.home))
+        }
+    });
+    let mut bounds = Bounds::new(
+        limits.collect(),
+        homes.collect(),
         cell.tasks.iter().map(|t| pose(&t.at)).collect(),
-    )
+    );
+    for (r, robot) in cell.robots.iter().enumerate() {
+        let Some(arm) = robot.as_arm() else { continue };
+        let nodes = (0..=cell.tasks.len())
+            .map(|n| assignment.joints(cell, r, n).map(Arc::from))
+            .collect();
+        let limits = arm.limits.clone();
+        bounds = bounds.with_joints(r, JointNodes { nodes, limits });
+    }
+    bounds
 }

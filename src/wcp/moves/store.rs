@@ -8,8 +8,12 @@ use super::{
 use crate::cell::Cell;
 use crate::collision::Body;
 use crate::geometry::{ConvexPolygon, Vec2};
-use crate::motion::{Pose, Sample};
+use crate::motion::IkSettings;
+use crate::motion::{JointSample, Pose, Sample};
 use crate::planning::{plan_move, time_primitives, PlannedMove, PlannerOptions, Primitive};
+use crate::planning::{ArmModel, JointPathSettings};
+use crate::wcp::configurations::{configurations_found, Assignment, Configurations};
+use crate::wcp::sequencer::node_task;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::fmt;
@@ -43,12 +47,23 @@ pub struct MoveStore {
     obstacles: Vec<Body>,
     /// Each obstacle's bounding box.
     boxes: Vec<(Vec2, Vec2)>,
-    shards: Vec<Mutex<Shard>>,
-    planned: AtomicUsize,
+    shards: Arc<Vec<Mutex<Shard>>>,
+    planned: Arc<AtomicUsize>,
     /// Motions between any two poses around extra obstacles (the remedies' detours and
     /// ways to a parking pose), keyed by robot, end poses and extra obstacles' bits.
-    between: Mutex<HashMap<Vec<u64>, Option<Arc<PlannedMove>>>>,
+    between: Arc<Mutex<Between>>,
+    /// Which configuration each arm takes at each task.
+    assignment: Arc<Assignment>,
+    /// Arms' moves, by robot and both ends' nodes and configurations (shared by the
+    /// stores of other assignments).
+    arm_moves: Arc<Mutex<HashMap<ArmKey, Arc<Slot>>>>,
 }
+
+/// Motions between two poses, by the bits of the robot, poses and extra obstacles.
+type Between = HashMap<Vec<u64>, Option<Arc<PlannedMove>>>;
+
+/// An arm's move: robot, then node and configuration index of each end, lower node first.
+type ArmKey = (usize, (usize, usize), (usize, usize));
 
 impl fmt::Debug for MoveStore {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -73,6 +88,31 @@ impl MoveStore {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn new(cell: &Cell, planner: &PlannerOptions) -> Self {
+        let found = match cell.robots.iter().any(|r| r.as_arm().is_some()) {
+            true => configurations_found(cell, &IkSettings::default()),
+            false => Configurations::default(),
+        };
+        MoveStore::with_assignment(
+            cell,
+            planner,
+            Assignment::nearest_home(cell, Arc::new(found)),
+        )
+    }
+
+    /// An empty store for `cell` with the arms in the configurations of `assignment`.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::motion::IkSettings;
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{task_configurations, Assignment, MoveStore};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &IkSettings::default())?);
+    /// let store = MoveStore::with_assignment(&cell, &PlannerOptions::default(), Assignment::nearest_home(&cell, found));
+    /// assert_eq!(store.planned(), 0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_assignment(cell: &Cell, planner: &PlannerOptions, assignment: Assignment) -> Self {
         let fixtures = Fixtures::of(cell);
         let piece_boxes = fixtures
             .pieces
@@ -90,10 +130,88 @@ impl MoveStore {
                 .iter()
                 .map(|o| bounding_box(o.shape.vertices()))
                 .collect(),
-            shards: (0..SHARDS).map(|_| Mutex::new(HashMap::new())).collect(),
-            planned: AtomicUsize::new(0),
-            between: Mutex::new(HashMap::new()),
+            shards: Arc::new((0..SHARDS).map(|_| Mutex::new(HashMap::new())).collect()),
+            planned: Arc::new(AtomicUsize::new(0)),
+            between: Arc::new(Mutex::new(HashMap::new())),
+            assignment: Arc::new(assignment),
+            arm_moves: Arc::new(Mutex::new(HashMap::new())),
         }
+    }
+
+    /// The same store (sharing every move planned so far, and those planned from now on)
+    /// with the arms in the configurations of `assignment`.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::MoveStore;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// store.get(0, 0, 1).unwrap();
+    /// let same = store.assigned(store.assignment().clone());
+    /// assert_eq!(same.known(0, 0, 1), store.known(0, 0, 1)); // planned once, for both
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn assigned(&self, assignment: Assignment) -> MoveStore {
+        MoveStore {
+            cell: self.cell.clone(),
+            planner: self.planner,
+            fixtures: self.fixtures.clone(),
+            piece_boxes: self.piece_boxes.clone(),
+            obstacles: self.obstacles.clone(),
+            boxes: self.boxes.clone(),
+            shards: self.shards.clone(),
+            planned: self.planned.clone(),
+            between: self.between.clone(),
+            assignment: Arc::new(assignment),
+            arm_moves: self.arm_moves.clone(),
+        }
+    }
+
+    /// Which configuration each arm takes at each task.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::MoveStore;
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// assert_eq!(store.assignment().joints(&cell, 0, 1), None); // no arm here
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn assignment(&self) -> &Assignment {
+        &self.assignment
+    }
+
+    /// The arm's slot for the move between `a` and `b` (a <= b) in the current assignment.
+    fn arm_slot(&self, r: usize, a: usize, b: usize) -> (ArmKey, Arc<Slot>) {
+        let index = |n: usize| match n {
+            0 => 0,
+            n => self.assignment.index(r, node_task(n)),
+        };
+        let key = (r, (a, index(a)), (b, index(b)));
+        let mut map = self.arm_moves.lock().unwrap_or_else(|e| e.into_inner());
+        (key, map.entry(key).or_default().clone())
+    }
+
+    /// Plans arm `r`'s move between nodes `a` and `b` in joint space: the straight move when
+    /// the checker certifies it clear of the fixtures, else a path around them.
+    fn plan_arm(&self, r: usize, a: usize, b: usize) -> Result<PlannedMove, MoveFailure> {
+        let cell = &self.cell;
+        let arm = cell.robots[r].as_arm().expect("an arm");
+        let joints = |n: usize| {
+            self.assignment
+                .joints(cell, r, n)
+                .ok_or(MoveFailure::NoConfiguration)
+        };
+        let (qa, qb) = (joints(a)?, joints(b)?);
+        let model = ArmModel::new(&cell.robots[r].name, arm);
+        let settings = JointPathSettings {
+            samples_per_phase: self.planner.samples_per_phase,
+            ..JointPathSettings::default()
+        };
+        let path = model
+            .joint_path(qa, qb, &self.obstacles, cell.delta, &settings)
+            .ok_or(MoveFailure::NoJointPath)?;
+        Ok(model.planned(&path.motion))
     }
 
     fn slot(&self, r: usize, a: usize, b: usize) -> Arc<Slot> {
@@ -119,12 +237,19 @@ impl MoveStore {
     /// ```
     pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
         let (a, b) = (from.min(to), from.max(to));
-        let slot = self.slot(r, a, b);
+        let arm = self.cell.robots[r].as_arm().is_some();
+        let slot = match arm {
+            true => self.arm_slot(r, a, b).1,
+            false => self.slot(r, a, b),
+        };
         let planned = slot
             .forward
             .get_or_init(|| {
                 self.planned.fetch_add(1, Ordering::Relaxed);
-                self.plan(r, a, b).map(Arc::new)
+                match arm {
+                    true => self.plan_arm(r, a, b).map(Arc::new),
+                    false => self.plan(r, a, b).map(Arc::new),
+                }
             })
             .clone()?;
         Ok(if from <= to {
@@ -222,6 +347,11 @@ impl MoveStore {
     /// ```
     pub fn known(&self, r: usize, from: usize, to: usize) -> Option<Result<f64, MoveFailure>> {
         let (a, b) = (from.min(to), from.max(to));
+        if self.cell.robots[r].as_arm().is_some() {
+            let (_, slot) = self.arm_slot(r, a, b);
+            let outcome = slot.forward.get()?;
+            return Some(outcome.as_ref().map(|m| m.duration).map_err(Clone::clone));
+        }
         let shard = (r.wrapping_mul(0x9E37_79B9) ^ a.wrapping_mul(0x85EB_CA6B) ^ b) % SHARDS;
         let map = self.shards[shard]
             .lock()
@@ -307,9 +437,7 @@ impl MoveStore {
         self.lock_between().entry(key).or_insert(planned).clone()
     }
 
-    fn lock_between(
-        &self,
-    ) -> std::sync::MutexGuard<'_, HashMap<Vec<u64>, Option<Arc<PlannedMove>>>> {
+    fn lock_between(&self) -> std::sync::MutexGuard<'_, Between> {
         self.between.lock().unwrap_or_else(|e| e.into_inner())
     }
 
@@ -363,5 +491,12 @@ fn reversed(m: &PlannedMove) -> PlannedMove {
         path: m.path.iter().rev().copied().collect(),
         samples,
         primitives: m.primitives.iter().rev().map(|p| p.reversed()).collect(),
+        joints: (m.joints.iter().rev())
+            .map(|s| JointSample {
+                t: m.duration - s.t,
+                q: s.q.clone(),
+                qd: s.qd.iter().map(|v| -v).collect(),
+            })
+            .collect(),
     }
 }

@@ -2,9 +2,9 @@
 //! added before its moves ([`Delay`]), the nodes of a route, and its samples
 //! ([`RobotSchedule`], read back by pose and by segment).
 
-use crate::cell::Cell;
-use crate::geometry::Vec2;
-use crate::motion::{Pose, Sample};
+use crate::cell::{Cell, CellRobot, RobotKind};
+use crate::geometry::{ConvexPolygon, Vec2};
+use crate::motion::{JointSample, Pose, Sample};
 use crate::wcp::legs::{default_legs, leg, with_leg, Leg, Legs};
 use crate::wcp::moves::node_name;
 use crate::wcp::sequencer::Step;
@@ -213,8 +213,11 @@ pub struct RobotSchedule {
     pub route: Vec<usize>,
     /// Its activities in time order, ending with [`Activity::Done`].
     pub segments: Vec<Segment>,
-    /// Its trajectory: starts at home at t = 0, ends at home.
+    /// Its trajectory: starts at home at t = 0, ends at home (for an arm, its tool's).
     pub samples: Vec<Sample>,
+    /// An arm's joint angles and rates at the times of `samples`: what the checker checks.
+    /// Empty for a rigid robot.
+    pub joints: Vec<JointSample>,
     /// The path of G (waypoints of the moves), for pictures.
     pub path: Vec<Vec2>,
     /// When it is back home.
@@ -257,6 +260,54 @@ impl RobotSchedule {
         Pose {
             pos: p.pos + (q.pos - p.pos) * u,
             theta: p.theta + (q.theta - p.theta) * u,
+        }
+    }
+
+    /// The robot's convex pieces placed as at time `t` (as the checker interpolates): its
+    /// body at [`RobotSchedule::pose_at`], or an arm's links at its joints then.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{MoveStore, RobotSchedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let r1 = RobotSchedule::build(&cell, 0, &[0], &[], &store).unwrap();
+    /// assert_eq!(r1.placed(&cell.robots[0], 0.0), cell.robots[0].at_home());
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn placed<'a>(&self, robot: &'a CellRobot, t: f64) -> Vec<(&'a [ConvexPolygon], Pose)> {
+        match &robot.kind {
+            RobotKind::Rigid(rigid) => vec![(rigid.pieces(), self.pose_at(t))],
+            RobotKind::Arm(arm) => arm.placed(&self.q_at(t)),
+        }
+    }
+
+    /// An arm's joint angles at time `t`, interpolated linearly as the checker does (empty
+    /// for a rigid robot).
+    ///
+    /// ```
+    /// use workcell::wcp::{prepare, solve, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+    /// let opts = SolveOptions::default();
+    /// let solved = solve(&cell, &prepare(&cell, &opts, &())?, &opts, &())?;
+    /// let a1 = &solved.schedule.robots[0];
+    /// assert_eq!(a1.q_at(0.0), cell.robots[0].as_arm().unwrap().home);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn q_at(&self, t: f64) -> Vec<f64> {
+        let s = &self.joints;
+        let k = s.partition_point(|p| p.t <= t);
+        match k {
+            _ if s.is_empty() => Vec::new(),
+            0 => s[0].q.clone(),
+            k if k == s.len() => s[k - 1].q.clone(),
+            k => {
+                let (p, q) = (&s[k - 1], &s[k]);
+                let u = (t - p.t) / (q.t - p.t);
+                (p.q.iter().zip(&q.q))
+                    .map(|(a, b)| a + (b - a) * u)
+                    .collect()
+            }
         }
     }
 

@@ -6,7 +6,7 @@
 use super::activity::{route_nodes, Activity, RobotSchedule, Segment};
 use crate::cell::Cell;
 use crate::geometry::Vec2;
-use crate::motion::Sample;
+use crate::motion::{tool_pose, JointSample, Sample};
 use crate::planning::PlannedMove;
 use crate::wcp::legs::{HoldReason, Leg, Piece};
 use crate::wcp::moves::{node_name, node_pose, MoveFailure, MoveStore};
@@ -125,7 +125,7 @@ impl RobotSchedule {
         legs: &[Leg],
         moves: &MoveStore,
     ) -> Result<RobotSchedule, BuildError> {
-        let mut line = Timeline::start(cell, r);
+        let mut line = Timeline::start(cell, r, moves);
         let nodes = route_nodes(route);
         let leg_count = if route.is_empty() {
             legs.len().min(1)
@@ -166,7 +166,7 @@ impl RobotSchedule {
                     }
                 }
             }
-            if line.position() != node_pose(cell, r, to).pos {
+            if !line.is_at(cell, moves, to) {
                 return Err(line.jump(m));
             }
             if to != 0 {
@@ -192,11 +192,33 @@ struct Timeline {
     /// The angle so far, continuous: a move planned from a node's angle starts at that angle
     /// plus the whole turns the robot has made.
     theta: f64,
+    /// An arm's joint samples so far (empty for a rigid robot; `samples` then follows its
+    /// tool).
+    joints: Vec<JointSample>,
+    /// Per joint of an arm, whether it turns freely (no limits): only such a joint may stand
+    /// whole turns away from a node's angle.
+    free: Vec<bool>,
 }
 
 impl Timeline {
-    fn start(cell: &Cell, r: usize) -> Timeline {
-        let home = node_pose(cell, r, 0);
+    fn start(cell: &Cell, r: usize, moves: &MoveStore) -> Timeline {
+        let (home, joints, free) = match cell.robots[r].as_arm() {
+            None => (node_pose(cell, r, 0), Vec::new(), Vec::new()),
+            Some(arm) => {
+                let lengths: Vec<f64> = arm.links.iter().map(|l| l.0).collect();
+                let q = moves
+                    .assignment()
+                    .joints(cell, r, 0)
+                    .expect("an arm's home");
+                let rest = JointSample {
+                    t: 0.0,
+                    q: q.to_vec(),
+                    qd: vec![0.0; q.len()],
+                };
+                let free = arm.limits.range.iter().map(Option::is_none).collect();
+                (tool_pose(arm.base, &lengths, q), vec![rest], free)
+            }
+        };
         Timeline {
             robot: r,
             samples: vec![rest(0.0, home.pos, home.theta)],
@@ -204,7 +226,33 @@ impl Timeline {
             path: vec![home.pos],
             now: 0.0,
             theta: home.theta,
+            joints,
+            free,
         }
+    }
+
+    /// Whether the robot stands at node `node`: its position there (a rigid robot), or its
+    /// joints at the node's angles (an arm; a free joint up to whole turns, each within the
+    /// rounding of the moves' ends).
+    fn is_at(&self, cell: &Cell, moves: &MoveStore, node: usize) -> bool {
+        let Some(last) = self.joints.last() else {
+            return self.position() == node_pose(cell, self.robot, node).pos;
+        };
+        let Some(q) = moves.assignment().joints(cell, self.robot, node) else {
+            return false;
+        };
+        (0..q.len()).all(|j| self.whole_turns(j, last.q[j], q[j]).is_some())
+    }
+
+    /// The whole turns from angle `b` to angle `a` of joint `j` when they are the same up to
+    /// rounding (none for a joint with limits), `None` when they differ.
+    fn whole_turns(&self, j: usize, a: f64, b: f64) -> Option<f64> {
+        let whole = if self.free[j] {
+            TAU * ((a - b) / TAU).round()
+        } else {
+            0.0
+        };
+        ((a - b - whole).abs() <= ANGLE_JOIN_TOL * (1.0 + a.abs())).then_some(whole)
     }
 
     fn precision(&self, time: f64) -> BuildError {
@@ -230,6 +278,14 @@ impl Timeline {
         let pos = self.samples.last().expect("starts with a sample").pos;
         self.push(activity, end, leg);
         self.samples.push(rest(end, pos, self.theta));
+        if let Some(last) = self.joints.last() {
+            let q = last.q.clone();
+            self.joints.push(JointSample {
+                t: end,
+                qd: vec![0.0; q.len()],
+                q,
+            });
+        }
         Ok(())
     }
 
@@ -252,6 +308,9 @@ impl Timeline {
         activity: Activity,
         leg: usize,
     ) -> Result<(), BuildError> {
+        if !self.joints.is_empty() {
+            return self.go_joints(planned, activity, leg);
+        }
         let first = &planned.samples[0];
         let turns = TAU * ((self.theta - first.theta) / TAU).round();
         let off = (self.theta - first.theta - turns).abs();
@@ -273,6 +332,38 @@ impl Timeline {
         }
         self.path.extend(planned.path.iter().skip(1));
         self.theta = planned.samples.last().expect("a move has samples").theta + turns;
+        self.push(activity, self.now + planned.duration, leg);
+        Ok(())
+    }
+
+    /// An arm's [`Timeline::go`]: its joints from where they are (a free joint whole turns
+    /// away from the move's first angle keeps those turns), its tool's samples beside them.
+    fn go_joints(
+        &mut self,
+        planned: &PlannedMove,
+        activity: Activity,
+        leg: usize,
+    ) -> Result<(), BuildError> {
+        let now_q = &self.joints.last().expect("starts with a sample").q;
+        let first = &planned.joints.first().ok_or_else(|| self.jump(leg))?.q;
+        let turns = (0..now_q.len())
+            .map(|j| self.whole_turns(j, now_q[j], first[j]))
+            .collect::<Option<Vec<f64>>>()
+            .ok_or_else(|| self.jump(leg))?;
+        for (s, js) in planned.samples[1..].iter().zip(&planned.joints[1..]) {
+            let t = self.now + s.t;
+            if t <= self.samples.last().expect("starts with a sample").t {
+                return Err(self.precision(t));
+            }
+            self.samples.push(Sample { t, ..*s });
+            self.joints.push(JointSample {
+                t,
+                q: js.q.iter().zip(&turns).map(|(q, k)| q + k).collect(),
+                qd: js.qd.clone(),
+            });
+        }
+        self.path.extend(planned.path.iter().skip(1));
+        self.theta = planned.samples.last().expect("a move has samples").theta;
         self.push(activity, self.now + planned.duration, leg);
         Ok(())
     }
@@ -300,6 +391,7 @@ impl Timeline {
             route: route.to_vec(),
             segments: self.segments,
             samples: self.samples,
+            joints: self.joints,
             path: self.path,
             end,
         }

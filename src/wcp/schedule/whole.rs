@@ -4,9 +4,9 @@
 
 use super::activity::{RobotSchedule, Segment};
 use super::timeline::BuildError;
-use crate::cell::Cell;
+use crate::cell::{Cell, RobotKind};
 use crate::collision::{Body, CheckReport, Scene};
-use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
+use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::motion::{Pose, Trajectory};
 use crate::wcp::legs::Leg;
 use crate::wcp::moves::MoveStore;
@@ -89,7 +89,7 @@ impl Schedule {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn scene(&self, cell: &Cell) -> Scene {
-        let robots = (0..self.robots.len()).map(|r| self.body(cell, r));
+        let robots = (0..self.robots.len()).flat_map(|r| self.bodies(cell, r));
         Scene {
             delta: cell.delta,
             bodies: robots.chain(cell.obstacle_bodies()).collect(),
@@ -110,18 +110,25 @@ impl Schedule {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn pair_scene(&self, cell: &Cell, a: usize, b: usize) -> Scene {
+        let mut bodies = self.bodies(cell, a);
+        bodies.extend(self.bodies(cell, b));
         Scene {
             delta: cell.delta,
-            bodies: vec![self.body(cell, a), self.body(cell, b)],
+            bodies,
         }
     }
 
-    fn body(&self, cell: &Cell, r: usize) -> Body {
-        cell.rigid(r).body(
-            &cell.robots[r].name,
-            Trajectory::new(self.robots[r].samples.clone())
-                .expect("schedules sample increasing times"),
-        )
+    /// Robot `r` as checker bodies: one for a rigid robot, one per link for an arm.
+    fn bodies(&self, cell: &Cell, r: usize) -> Vec<Body> {
+        let name = &cell.robots[r].name;
+        match &cell.robots[r].kind {
+            RobotKind::Rigid(robot) => vec![robot.body(
+                name,
+                Trajectory::new(self.robots[r].samples.clone())
+                    .expect("schedules sample increasing times"),
+            )],
+            RobotKind::Arm(arm) => arm.bodies(name, self.robots[r].joints.clone()),
+        }
     }
 
     /// The first collision of a check of [`Schedule::scene`], located in the schedule.
@@ -146,32 +153,31 @@ impl Schedule {
         let robot = |name: &str| cell.robots.iter().position(|r| r.name == name);
         let a = robot(&contact.bodies[0]).expect("the checker names a robot first");
         let b = robot(&contact.bodies[1]);
-        let pieces_a = cell.rigid(a).pieces();
-        let pose_a = self.robots[a].pose_at(contact.time);
-        let (pieces_b, pose_b) = match b {
-            Some(b) => (cell.rigid(b).pieces(), self.robots[b].pose_at(contact.time)),
+        let placed_a = self.robots[a].placed(&cell.robots[a], contact.time);
+        let placed_b = match b {
+            Some(b) => self.robots[b].placed(&cell.robots[b], contact.time),
             None => {
                 let o = cell
                     .obstacles
                     .iter()
                     .find(|o| o.name == contact.bodies[1])?;
-                (
-                    o.pieces(),
-                    Pose {
-                        pos: Vec2::zeros(),
-                        theta: 0.0,
-                    },
-                )
+                vec![(o.pieces(), Pose::new(0.0, 0.0, 0.0))]
             }
         };
         // The nearest pair of pieces (the one pair of a convex robot and obstacle).
         let posed = |s, p: Pose| Posed::new(s, p.pos.x, p.pos.y, p.theta);
+        let pieces = |placed: &[(&'_ [ConvexPolygon], Pose)]| -> Vec<(ConvexPolygon, Pose)> {
+            (placed.iter())
+                .flat_map(|&(list, pose)| list.iter().map(move |p| (p.clone(), pose)))
+                .collect()
+        };
+        let (pieces_a, pieces_b) = (pieces(&placed_a), pieces(&placed_b));
         let d = pieces_a
             .iter()
             .flat_map(|x| pieces_b.iter().map(move |y| (x, y)))
-            .map(|(x, y)| {
+            .map(|((x, pa), (y, pb))| {
                 let tol = WalkTolerances::default();
-                closest_features(&posed(x, pose_a), &posed(y, pose_b), None, &tol)
+                closest_features(&posed(x, *pa), &posed(y, *pb), None, &tol)
             })
             .min_by(|p, q| p.distance.total_cmp(&q.distance))
             .expect("a body has at least one piece");

@@ -16,7 +16,10 @@
 
 use super::terms::node_task;
 use crate::geometry::Vec2;
-use crate::planning::{angle_between, rest_to_rest_time};
+use crate::motion::JointLimits;
+use crate::planning::{angle_between, joint_move_time, rest_to_rest_time};
+use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// One robot's limits as the bounds need them.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,10 +34,24 @@ pub struct BoundLimits {
     pub max_turn_rate: f64,
 }
 
+/// An arm's joint angles at each of its nodes and its joint limits: its moves' bounds are
+/// the straight joint-space moves' times ([`joint_move_time`]), which every path between
+/// the same angles takes at least.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointNodes {
+    /// Per node (0 = home, `1 + t` = task `t`), the joint angles; `None` where the arm
+    /// cannot go.
+    pub nodes: Vec<Option<Arc<[f64]>>>,
+    /// The arm's joint limits.
+    pub limits: JointLimits,
+}
+
 /// The poses of every node and the robots' limits: a lower bound for every move.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bounds {
     limits: Vec<BoundLimits>,
+    /// Per robot, its joints' nodes when it is an arm.
+    joints: Vec<Option<Arc<JointNodes>>>,
     /// Per robot, its home `(position, θ)`.
     homes: Vec<(Vec2, f64)>,
     /// Per task, its pose.
@@ -58,10 +75,34 @@ impl Bounds {
     pub fn new(limits: Vec<BoundLimits>, homes: Vec<(Vec2, f64)>, tasks: Vec<(Vec2, f64)>) -> Self {
         assert_eq!(limits.len(), homes.len(), "one home per robot");
         Bounds {
+            joints: vec![None; limits.len()],
             limits,
             homes,
             tasks,
         }
+    }
+
+    /// The same bounds with robot `r` an arm whose moves are bounded in joint space (its
+    /// `limits` and home pose are then not used, but for picking tasks near each other).
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::geometry::Vec2;
+    /// use workcell::motion::JointLimits;
+    /// use workcell::planning::joint_move_time;
+    /// use workcell::wcp::sequencer::{BoundLimits, Bounds, JointNodes};
+    /// let limits = BoundLimits { max_speed: 1.0, max_accel: 2.0, max_angular_accel: 2.0, max_turn_rate: 1.0 };
+    /// let at = |x: f64, y: f64| (Vec2::new(x, y), 0.0);
+    /// let joints = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![1.0] };
+    /// let nodes = vec![Some(Arc::from([0.0])), Some(Arc::from([1.0])), None];
+    /// let b = Bounds::new(vec![limits], vec![at(0.0, 0.0)], vec![at(1.0, 0.0), at(2.0, 0.0)])
+    ///     .with_joints(0, JointNodes { nodes, limits: joints.clone() });
+    /// assert_eq!(b.bound(0, 0, 1), joint_move_time(&[0.0], &[1.0], &joints));
+    /// assert_eq!(b.bound(0, 0, 2), f64::INFINITY); // a task the arm cannot reach
+    /// ```
+    pub fn with_joints(mut self, r: usize, joints: JointNodes) -> Bounds {
+        self.joints[r] = Some(Arc::new(joints));
+        self
     }
 
     /// Number of robots.
@@ -108,6 +149,12 @@ impl Bounds {
     /// ```
     #[inline]
     pub fn bound(&self, r: usize, from: usize, to: usize) -> f64 {
+        if let Some(arm) = &self.joints[r] {
+            return match (&arm.nodes[from], &arm.nodes[to]) {
+                (Some(a), Some(b)) => joint_move_time(a, b, &arm.limits),
+                _ => f64::INFINITY,
+            };
+        }
         let ((a, ta), (b, tb)) = (self.pose(r, from), self.pose(r, to));
         let l = &self.limits[r];
         // The planner measures the straight segment as `(to − from).norm()`, and the turn
@@ -118,7 +165,8 @@ impl Bounds {
     }
 
     /// A bound at least as long as every bound: the longest straight move (the diagonal of
-    /// the box around every pose) with a half-turn, for the slowest robot.
+    /// the box around every pose) with a half-turn, for the slowest robot; for an arm, its
+    /// slowest joint across its range.
     ///
     /// ```
     /// use workcell::geometry::Vec2;
@@ -135,15 +183,23 @@ impl Bounds {
             |(lo, hi), p| (lo.inf(&p), hi.sup(&p)),
         );
         let diagonal = if lo.x <= hi.x { (hi - lo).norm() } else { 0.0 };
-        self.limits
-            .iter()
-            .map(|l| {
-                let trans = rest_to_rest_time(diagonal, l.max_speed, l.max_accel);
-                let rot =
-                    rest_to_rest_time(std::f64::consts::PI, l.max_turn_rate, l.max_angular_accel);
-                trans.max(rot)
-            })
-            .fold(0.0, f64::max)
+        let rigid = (self.limits.iter().zip(&self.joints)).filter(|(_, j)| j.is_none());
+        let rigid = rigid.map(|(l, _)| {
+            let trans = rest_to_rest_time(diagonal, l.max_speed, l.max_accel);
+            let rot = rest_to_rest_time(PI, l.max_turn_rate, l.max_angular_accel);
+            trans.max(rot)
+        });
+        // An arm's joint turns at most across its range, or half a turn when it is free.
+        let arms = self.joints.iter().flatten().map(|arm| {
+            let l = &arm.limits;
+            (0..l.max_speed.len())
+                .map(|j| {
+                    let span = l.range[j].map_or(PI, |[lo, hi]| hi - lo);
+                    rest_to_rest_time(span, l.max_speed[j], l.max_accel[j])
+                })
+                .fold(0.0, f64::max)
+        });
+        rigid.chain(arms).fold(0.0, f64::max)
     }
 
     /// Position of task `t`.

@@ -53,7 +53,7 @@ mod offers;
 mod plan;
 mod terms;
 
-pub use bounds::{BoundLimits, Bounds};
+pub use bounds::{BoundLimits, Bounds, JointNodes};
 pub use instance::{ExactArcs, Instance};
 pub use model::GRANULAR_FROM_TASKS;
 pub use terms::{

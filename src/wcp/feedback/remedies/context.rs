@@ -158,17 +158,19 @@ pub(super) fn leg_nodes(view: &View, x: usize, m: usize) -> (usize, usize) {
     (nodes[m], nodes[(m + 1).min(nodes.len() - 1)])
 }
 
-/// The leg's motion as pieces: its own, or the planned move timed from its primitives.
+/// The leg's motion as pieces: its own, or the planned move timed from its primitives (as
+/// `evaluate` times it; an arm's joint-space move as planned).
 pub(super) fn pieces_of(ctx: &Ctx, view: &View, x: usize, m: usize) -> Option<Vec<Piece>> {
     match &leg(view.legs, x, m).pieces {
         Some(p) => Some(p.to_vec()),
         None => {
             let (from, to) = leg_nodes(view, x, m);
             let planned = ctx.moves.get(x, from, to).ok()?;
-            Some(vec![Piece::Go {
-                motion: ctx.moves.timed(x, &planned.primitives),
-                scale: 1.0,
-            }])
+            let motion = match ctx.cell.robots[x].as_arm() {
+                Some(_) => planned,
+                None => ctx.moves.timed(x, &planned.primitives),
+            };
+            Some(vec![Piece::Go { motion, scale: 1.0 }])
         }
     }
 }

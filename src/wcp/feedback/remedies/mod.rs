@@ -68,9 +68,19 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
             t,
         },
     ];
+    // With an arm in the pair, the remedies that only change time: pause, detour and step
+    // aside plan in the plane, for rigid robots.
+    let arm = [a, b]
+        .iter()
+        .any(|&r| ctx.cell.robots[r].as_arm().is_some());
+    let in_time: [bool; 5] = [true, false, true, false, false];
     let jobs: Vec<(&Side, Job)> = sides
         .iter()
-        .flat_map(|side| kinds.iter().filter(|k| k.0).map(move |k| (side, k.1)))
+        .flat_map(|side| {
+            (kinds.iter().zip(in_time))
+                .filter(move |(k, timed)| k.0 && (timed | !arm))
+                .map(move |(k, _)| (side, k.1))
+        })
         .collect();
     jobs.par_iter()
         .map(|(side, job)| job(ctx, view, side))
