@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use workcell::collision::{CheckOptions, Method};
 use workcell::compare::{default_contenders, Contender};
-use workcell::generate::{CellRequest, ConflictKind, Kind};
+use workcell::generate::{CellRequest, ConflictKind, Kind, ScaraRequest};
 
 #[derive(Parser)]
 #[command(
@@ -156,16 +156,17 @@ enum Command {
     Generate {
         /// Family of scenes or cells (see README: "`workcell generate`"): `all` for every
         /// family of scenes, `conflict` for every family of conflict cells, `cell` for a cell
-        /// at the size of a line.
+        /// at the size of a line, `scara` for a cell of SCARA arms.
         #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(cli::generate::kind_names()))]
         kind: String,
         /// Seed: the same seed gives the same scenes.
         #[arg(long, allow_negative_numbers = true)]
         seed: u64,
-        /// Number of robots (`hall`: default 10; `cell`: required, at most 1,000).
+        /// Number of robots (`hall`: default 10; `cell`: required, at most 1,000; `scara`:
+        /// arms, 2 to 8, default 4).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000), allow_negative_numbers = true)]
         robots: Option<u64>,
-        /// Number of tasks of a cell (`cell` only, required).
+        /// Number of tasks of a cell (`cell`: required; `scara`: default 40).
         #[arg(long, allow_negative_numbers = true)]
         tasks: Option<u64>,
         /// Number of fixtures of a cell (`cell` only; default 3 per 50 tasks).
@@ -210,8 +211,20 @@ fn generate(
         req.check().map_err(|e| refuse(&e))?;
         return run_generate(&What::Cells(req), seed, count.unwrap_or(1), out);
     }
+    if kind == "scara" {
+        if fixtures.is_some() {
+            return Err(refuse("--fixtures applies only to --kind cell"));
+        }
+        let req = ScaraRequest {
+            arms: robots.map_or(4, |r| r as usize),
+            tasks: tasks.map_or(40, |t| t as usize),
+        };
+        return run_generate(&What::Scara(req), seed, count.unwrap_or(1), out);
+    }
     if tasks.is_some() || fixtures.is_some() {
-        return Err(refuse("--tasks and --fixtures apply only to --kind cell"));
+        return Err(refuse(
+            "--tasks and --fixtures apply only to --kind cell and scara",
+        ));
     }
     let conflicts = match kind {
         "conflict" => Some(ConflictKind::ALL.to_vec()),

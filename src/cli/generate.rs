@@ -5,19 +5,20 @@ use std::path::Path;
 use std::process::ExitCode;
 use workcell::cell::{scene_document, InputError};
 use workcell::generate::{
-    cell_file_name, conflict_file_name, generate_cell, generate_conflict_cell, generate_scene,
-    scene_file_name, CellRequest, ConflictKind, Kind,
+    cell_file_name, conflict_file_name, generate_cell, generate_conflict_cell, generate_scara_cell,
+    generate_scene, scara_file_name, scene_file_name, CellRequest, ConflictKind, Kind,
+    ScaraRequest,
 };
 
 /// Every accepted `--kind` value: the scene families and `all`, the conflict families and
-/// `conflict`, and `cell`.
+/// `conflict`, `cell` and `scara`.
 pub fn kind_names() -> Vec<&'static str> {
     let scenes = Kind::ALL.map(Kind::name).into_iter().chain(["all"]);
     let conflicts = ConflictKind::ALL
         .map(ConflictKind::name)
         .into_iter()
         .chain(["conflict"]);
-    scenes.chain(conflicts).chain(["cell"]).collect()
+    scenes.chain(conflicts).chain(["cell", "scara"]).collect()
 }
 
 /// What `generate` writes.
@@ -33,6 +34,8 @@ pub enum What<'a> {
     Conflicts(&'a [ConflictKind]),
     /// Cells for `solve`.
     Cells(CellRequest),
+    /// SCARA cells for `solve`.
+    Scara(ScaraRequest),
 }
 
 /// Writes one file's text when called, or says why it cannot.
@@ -95,6 +98,17 @@ pub fn run_generate(
                         }),
                     ));
                 }
+            }
+        }
+        What::Scara(req) => {
+            for k in 0..count {
+                files.push((
+                    scara_file_name(req, seed, k),
+                    Box::new(move || {
+                        generate_scara_cell(req, seed, k)
+                            .map(|doc| serde_json::to_string_pretty(&doc).expect("serialises"))
+                    }),
+                ));
             }
         }
         What::Cells(req) => {

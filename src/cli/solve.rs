@@ -13,7 +13,8 @@ use workcell::cell::{
 use workcell::view;
 use workcell::wcp::remedy_json::legs_json;
 use workcell::wcp::report::{
-    collision_json, rounds_json, schedule_json, sequences_json, summary, waits_json, ResultJson,
+    collision_json, configurations_json, rounds_json, schedule_json, sequences_json, summary,
+    waits_json, ResultJson,
 };
 use workcell::wcp::{
     self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SolveOptions, WcpGraph,
@@ -276,7 +277,9 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
     let mut written = Ok(());
     if let Some(file) = args.export_graph {
         // After the solve: every move it planned is exact there.
-        let graph = WcpGraph::new(&cell, &prepared.moves, &prepared.bounds);
+        // The configurations the solve chose.
+        let moves = prepared.moves.assigned(solved.assignment.clone());
+        let graph = WcpGraph::new(&cell, &moves, &wcp::bounds(&cell, moves.assignment()));
         let doc = serde_json::to_string_pretty(&graph.export(&cell)).expect("a graph serialises");
         written = written.and(write(file, &doc));
     }
@@ -286,6 +289,7 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
         makespan: solved.schedule.makespan,
         collision_free: solved.collision_free,
         sequences,
+        configurations: configurations_json(&cell, &solved.routes, &solved.assignment),
         iterations: solved.iterations.len(),
         schedules_checked: Some(solved.nodes),
         waits: waits_json(&cell, &solved.delays()),
@@ -366,6 +370,7 @@ pub fn run_evaluate(
         makespan: evaluated.schedule.makespan,
         collision_free: evaluated.collision_free,
         sequences: sequence_names,
+        configurations: Vec::new(),
         iterations: 1,
         schedules_checked: None,
         waits: waits_json(&cell, &evaluated.delays),

@@ -8,11 +8,13 @@ mod arm_scenes;
 mod cells;
 mod conflict;
 mod parts_scenes;
+mod scara;
 mod scenes;
 mod smooth;
 
 pub use cells::{cell_file_name, generate_cell, CellRequest, TASK_CLEARANCE};
 pub use conflict::{conflict_file_name, generate_conflict_cell, ConflictKind};
+pub use scara::{generate_scara_cell, scara_file_name, ScaraRequest, MAX_SCARA_TASKS, SCARA_ARMS};
 pub use scenes::{generate_scene, scene_file_name, Kind};
 
 /// SplitMix64's finaliser: spreads (seed, kind, index) over the whole seed space.

@@ -307,6 +307,7 @@ impl Model {
     /// // The result document, as `workcell evaluate --json` writes it.
     /// let result = ResultJson {
     ///     makespan: e.schedule.makespan, collision_free: e.collision_free, sequences, schedule,
+    ///     configurations: vec![],
     ///     first_collision: e.collision.as_ref().map(|c| collision_json(&cell, c)),
     ///     iterations: 1, schedules_checked: None, waits: vec![], legs: vec![], blind_sequences: None,
     ///     blind_makespan: None, blind_optimal: None, feedback: vec![], failure: None,

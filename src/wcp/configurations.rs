@@ -90,6 +90,35 @@ impl Assignment {
         }
     }
 
+    /// Each arm at each task in its first configuration (the order of
+    /// [`inverse_kinematics`](crate::motion::inverse_kinematics)).
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use workcell::wcp::{task_configurations, Assignment, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+    /// let found = Arc::new(task_configurations(&cell, &SolveOptions::default().ik)?);
+    /// assert_eq!(Assignment::first(&cell, found).index(0, 0), 0);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn first(cell: &Cell, configurations: Arc<Configurations>) -> Assignment {
+        let chosen = (cell.robots.iter())
+            .map(|r| match r.as_arm() {
+                Some(_) => vec![0; cell.tasks.len()],
+                None => Vec::new(),
+            })
+            .collect();
+        Assignment {
+            configurations,
+            chosen,
+        }
+    }
+
+    /// The configurations found, shared.
+    pub(crate) fn configurations_arc(&self) -> Arc<Configurations> {
+        self.configurations.clone()
+    }
+
     /// The configurations found, whatever was chosen.
     ///
     /// ```

@@ -19,7 +19,7 @@ pub enum NodeKind {
 }
 
 /// An arc: robot `robot` can move from its source to its target in `travel_time`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TravelArc {
     /// The robot (index into the cell's robots).
     pub robot: usize,
@@ -28,6 +28,9 @@ pub struct TravelArc {
     pub travel_time: f64,
     /// The move was planned and certified; otherwise `travel_time` is its lower bound.
     pub exact: bool,
+    /// For an arm, its joint angles at the two ends: the configurations the arc joins (the
+    /// generalised TSP's (task, configuration) nodes).
+    pub joints: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 /// The directed graph of the Work-Cell Problem (petgraph), one node per home and per task.
@@ -77,10 +80,12 @@ impl WcpGraph {
                         Some(Err(_)) => continue,
                         None => (bounds.bound(r, a, b), false),
                     };
+                    let at = |n| store.assignment().joints(cell, r, n).map(<[f64]>::to_vec);
                     let arc = TravelArc {
                         robot: r,
                         travel_time,
                         exact,
+                        joints: at(a).zip(at(b)),
                     };
                     graph.add_edge(index(r, a), index(r, b), arc);
                 }
@@ -128,6 +133,8 @@ impl WcpGraph {
                 to: name(self.graph[e.target()]),
                 travel_time: e.weight().travel_time,
                 exact: e.weight().exact,
+                from_configuration: e.weight().joints.as_ref().map(|j| j.0.clone()),
+                to_configuration: e.weight().joints.as_ref().map(|j| j.1.clone()),
             })
             .collect();
         GraphFile { nodes, arcs }
@@ -167,6 +174,12 @@ pub struct GraphFileArc {
     /// Whether the move was planned and certified (`travel_time` is then its time) or not
     /// (`travel_time` is the time of the straight obstacle-free move, a lower bound).
     pub exact: bool,
+    /// For an arm, its joint angles at `from` (the configuration the arc leaves).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub from_configuration: Option<Vec<f64>>,
+    /// For an arm, its joint angles at `to`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to_configuration: Option<Vec<f64>>,
 }
 
 /// Plans, for every task, the moves from the homes of its allowed robots, nearest robot

@@ -14,6 +14,7 @@
 //!    former loop (re-sequence or wait, the better each round).
 //! 5. [`evaluate`]: the same schedule and check for sequences given by the user.
 
+mod choose;
 mod configurations;
 mod evaluate;
 mod feedback;
@@ -30,6 +31,8 @@ mod sequence;
 pub mod sequencer;
 mod time_axis;
 
+pub use choose::choose_configurations;
+pub(crate) use configurations::configurations_found;
 pub use configurations::{task_configurations, Assignment, Configuration, Configurations};
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
@@ -41,7 +44,10 @@ pub use graph::{
 pub use moves::{
     bounds, certified_move, node_name, node_pose, robot_nodes, MoveFailure, MoveStore,
 };
-pub use options::{Feedback, Planning, Remedies, SearchOptions, SolveOptions, AUTO_ALL_MAX_MOVES};
+pub use options::{
+    ConfigurationChoice, Feedback, Planning, Remedies, SearchOptions, SolveOptions,
+    AUTO_ALL_MAX_MOVES,
+};
 pub use prepare::{prepare, sequencer_error, Prepared, Progress, StageTimes};
 
 pub use schedule::{

@@ -41,10 +41,22 @@ pub struct SolveOptions {
     pub planning: Planning,
     /// How arms' configurations at the tasks are found (inverse kinematics).
     pub ik: IkSettings,
-    /// Whether the solver may change which configuration each arm takes at each task; when
-    /// not, each keeps the one it reaches soonest from home.
-    pub choose_configurations: bool,
+    /// Which configuration each arm takes at each task.
+    pub configurations: ConfigurationChoice,
 }
+/// How each arm's configuration at each task is decided.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ConfigurationChoice {
+    /// Chosen with the routes (`choose.rs`), from the ones reached soonest from home.
+    #[default]
+    Chosen,
+    /// The one each arm reaches soonest from home, kept.
+    NearestHome,
+    /// The first inverse-kinematics solution (for two links, the elbow-up one where the
+    /// limits allow it), kept: a fixed choice to compare against.
+    First,
+}
+
 /// Which moves [`prepare`](crate::wcp::prepare) plans and certifies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Planning {
@@ -76,7 +88,7 @@ impl Default for SolveOptions {
             time_limit: None,
             planning: Planning::Auto,
             ik: IkSettings::default(),
-            choose_configurations: true,
+            configurations: ConfigurationChoice::Chosen,
         }
     }
 }

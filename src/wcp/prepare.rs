@@ -4,7 +4,7 @@
 use super::configurations::{task_configurations, Assignment};
 use super::graph::{check_reachable, plan_reaches};
 use super::moves::{bounds, robot_nodes, MoveStore};
-use super::options::{Planning, SolveOptions, AUTO_ALL_MAX_MOVES};
+use super::options::{ConfigurationChoice, Planning, SolveOptions, AUTO_ALL_MAX_MOVES};
 use super::schedule::Collision;
 use super::sequencer::{Bounds, ExactArcs, SequencerError};
 use crate::cell::{Cell, InputError};
@@ -111,7 +111,10 @@ pub fn prepare(
         true => task_configurations(cell, &opts.ik)?,
         false => Default::default(),
     };
-    let assignment = Assignment::nearest_home(cell, Arc::new(found));
+    let assignment = match opts.configurations {
+        ConfigurationChoice::First => Assignment::first(cell, Arc::new(found)),
+        _ => Assignment::nearest_home(cell, Arc::new(found)),
+    };
     let moves = MoveStore::with_assignment(cell, &opts.planner, assignment);
     let bounds = Arc::new(bounds(cell, moves.assignment()));
     times.graph = clock.elapsed();
@@ -157,6 +160,37 @@ pub fn prepare(
         deadline,
         times,
     })
+}
+
+impl Prepared {
+    /// The same preparation with the arms in the configurations of `assignment`: the store
+    /// shares every move planned so far, the bounds and the known moves are those of the
+    /// new configurations.
+    pub(super) fn reassigned(&self, cell: &Cell, assignment: Assignment) -> Prepared {
+        let moves = self.moves.assigned(assignment);
+        let bounds = Arc::new(bounds(cell, moves.assignment()));
+        let mut known = (*self.known).clone();
+        for (r, arcs) in known.iter_mut().enumerate() {
+            if cell.robots[r].as_arm().is_none() {
+                continue;
+            }
+            // The moves of the new configurations planned already, both ways.
+            let pairs: Vec<(usize, usize)> = arcs.keys().copied().collect();
+            arcs.clear();
+            for (a, b) in pairs {
+                if let Some(outcome) = moves.known(r, a, b) {
+                    arcs.insert((a, b), outcome.unwrap_or(f64::INFINITY));
+                }
+            }
+        }
+        Prepared {
+            moves,
+            bounds,
+            known: Arc::new(known),
+            deadline: self.deadline,
+            times: self.times,
+        }
+    }
 }
 
 /// A sequencer error in the cell's terms.

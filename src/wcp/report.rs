@@ -1,11 +1,13 @@
 //! What `solve` and `evaluate` print: the contract's JSON (section 4, with optional fields
 //! added) and the human summary.
 
+use super::configurations::Assignment;
 use super::feedback::{describe, Iteration};
 use super::moves::node_name;
 use super::prepare::StageTimes;
 use super::remedy_json::{change_json, remedy_name, remedy_text, ChangeJson, LegJson};
 use super::schedule::{Activity, Collision, Delay, Schedule};
+use super::sequencer::task_node;
 use crate::cell::Cell;
 use crate::collision::Stats;
 use serde::ser::{SerializeMap, Serializer};
@@ -22,6 +24,10 @@ pub struct ResultJson<'a> {
     /// Each robot's tasks in order, robots in the cell's order.
     #[serde(serialize_with = "ordered_map")]
     pub sequences: Vec<(&'a str, Vec<&'a str>)>,
+    /// Each arm's joint angles at each of its tasks, in the order of `sequences` (contract
+    /// section 7: the configuration the solver chose); arms only.
+    #[serde(serialize_with = "ordered_map", skip_serializing_if = "Vec::is_empty")]
+    pub configurations: Vec<(&'a str, Vec<Vec<f64>>)>,
     /// Rounds of sequencing, checking and feedback (1 for `evaluate`): for the search, the
     /// rounds on the branch of the answer.
     pub iterations: usize,
@@ -171,6 +177,40 @@ impl From<StageTimes> for StagesJson {
             checking: ms(t.checking),
         }
     }
+}
+
+/// Each arm's joint angles at the tasks of its route, in order (see
+/// [`ResultJson::configurations`]); rigid robots are left out.
+///
+/// ```
+/// use workcell::wcp::{prepare, report::configurations_json, solve, SolveOptions};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+/// let opts = SolveOptions::default();
+/// let solved = solve(&cell, &prepare(&cell, &opts, &())?, &opts, &())?;
+/// let chosen = configurations_json(&cell, &solved.routes, &solved.assignment);
+/// assert_eq!(chosen[0].0, "A1");
+/// assert_eq!(chosen[0].1.len(), solved.routes[0].len());
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn configurations_json<'a>(
+    cell: &'a Cell,
+    routes: &[Vec<usize>],
+    assignment: &Assignment,
+) -> Vec<(&'a str, Vec<Vec<f64>>)> {
+    (routes.iter().enumerate())
+        .filter(|&(r, _)| cell.robots[r].as_arm().is_some())
+        .map(|(r, route)| {
+            let joints = route
+                .iter()
+                .filter_map(|&t| {
+                    assignment
+                        .joints(cell, r, task_node(t))
+                        .map(<[f64]>::to_vec)
+                })
+                .collect();
+            (cell.robots[r].name.as_str(), joints)
+        })
+        .collect()
 }
 
 fn ordered_map<S: Serializer, V: Serialize>(pairs: &[(&str, V)], s: S) -> Result<S::Ok, S::Error> {

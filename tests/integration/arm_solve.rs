@@ -29,6 +29,11 @@ fn assert_valid(cell: &Cell, s: &Solved) {
     let mut done = vec![0; cell.tasks.len()];
     for (r, plan) in s.schedule.robots.iter().enumerate() {
         let Some(arm) = cell.robots[r].as_arm() else {
+            for seg in &plan.segments {
+                if let Activity::Work(t) = seg.activity {
+                    done[t] += 1;
+                }
+            }
             continue;
         };
         let lengths = arm.lengths();
@@ -85,8 +90,11 @@ fn the_shipped_scara_cell_is_solved_and_certified() {
     let cell = scara();
     let s = solved(&cell, &SolveOptions::default());
     assert_valid(&cell, &s);
-    // The arms meet over the table: the blind schedule collides and feedback separates them.
+    // The arms meet over the table: the blind schedule collides and feedback separates them
+    // (the figures of the README's table of shipped cells).
     assert!(s.iterations.len() > 1, "the arms meet");
+    assert_eq!(format!("{:.3}", s.blind_makespan), "10.211");
+    assert_eq!(format!("{:.3}", s.schedule.makespan), "10.211");
 }
 
 #[test]
@@ -98,4 +106,105 @@ fn arm_solves_are_deterministic() {
     );
     assert_eq!(a.routes, b.routes);
     assert_eq!(a.schedule.makespan, b.schedule.makespan);
+}
+
+/// Issue 22, item 6: `generate --kind scara` writes cells that read, whose every task 1 to 3
+/// arms may do, some arms bending their elbow one way only, some cells with a rigid robot
+/// too; each solves to a certified schedule.
+#[test]
+fn generated_scara_cells_solve_and_certify() {
+    use workcell::generate::{generate_scara_cell, ScaraRequest};
+    let req = ScaraRequest { arms: 3, tasks: 8 };
+    let mut one_way = 0;
+    for k in 0..3 {
+        let doc = generate_scara_cell(&req, 7, k).unwrap();
+        assert_eq!(
+            doc,
+            generate_scara_cell(&req, 7, k).unwrap(),
+            "deterministic"
+        );
+        let cell = workcell::cell::parse_cell(&doc.to_string(), Path::new("g.json"))
+            .unwrap()
+            .cell;
+        let arms = cell.robots.iter().filter(|r| r.as_arm().is_some()).count();
+        assert_eq!(arms, 3);
+        assert_eq!(
+            cell.robots.len() > arms,
+            k == 2,
+            "a rigid robot in every third cell"
+        );
+        for t in &cell.tasks {
+            let by_arms = t
+                .robots
+                .iter()
+                .filter(|&&r| cell.robots[r].as_arm().is_some())
+                .count();
+            assert!((1..=3).contains(&by_arms), "{}: {by_arms} arms", t.name);
+        }
+        one_way += (cell.robots.iter().filter_map(|r| r.as_arm()))
+            .filter(|a| a.limits.range[1].is_some_and(|[lo, hi]| lo > 0.0 || hi < 0.0))
+            .count();
+        let s = solved(&cell, &SolveOptions::default());
+        assert!(s.collision_free, "{:?}", s.failure);
+        assert_valid(&cell, &s);
+    }
+    assert!(one_way > 0, "some elbows bend one way only");
+}
+
+/// Issue 22, item 3: the configurations chosen with the routes are never worse, collision
+/// blind, than the fixed choices they start from.
+#[test]
+fn chosen_configurations_beat_fixed_ones() {
+    use workcell::generate::{generate_scara_cell, ScaraRequest};
+    use workcell::wcp::{choose_configurations, sequence, ConfigurationChoice};
+    let doc = generate_scara_cell(&ScaraRequest { arms: 4, tasks: 16 }, 1, 0).unwrap();
+    let cell = workcell::cell::parse_cell(&doc.to_string(), Path::new("g.json"))
+        .unwrap()
+        .cell;
+    let blind = |configurations| {
+        let opts = SolveOptions {
+            configurations,
+            ..SolveOptions::default()
+        };
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let prepared = choose_configurations(&cell, &prepared, &opts, &())
+            .unwrap()
+            .unwrap_or(prepared);
+        sequence(&cell, &prepared, &[], &opts).unwrap().makespan
+    };
+    let chosen = blind(ConfigurationChoice::Chosen);
+    assert!(chosen <= blind(ConfigurationChoice::First));
+    assert!(chosen <= blind(ConfigurationChoice::NearestHome));
+}
+
+/// `workcell generate --kind scara` writes cells `solve` takes; a bad size is exit 2.
+#[cfg(feature = "cli")]
+#[test]
+fn generate_scara_from_the_command_line() {
+    use crate::common::{temp_dir_made, workcell};
+    let dir = temp_dir_made("arm-solve", "generate");
+    let out = dir.to_str().unwrap();
+    let o = workcell(&[
+        "generate", "--kind", "scara", "--seed", "3", "--robots", "2", "--tasks", "5", "--out", out,
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let file = dir.join("scara-2x5-3-0.json");
+    let o = workcell(&["solve", file.to_str().unwrap()]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for bad in [vec!["--robots", "9"], vec!["--fixtures", "2"]] {
+        let mut args = vec!["generate", "--kind", "scara", "--seed", "3", "--out", out];
+        args.extend(bad);
+        let o = workcell(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+    }
 }

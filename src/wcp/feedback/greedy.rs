@@ -224,6 +224,7 @@ impl Greedy<'_> {
             blind_makespan: blind.makespan,
             blind_optimal: blind.optimal,
             failure,
+            assignment: self.prepared.moves.assignment().clone(),
             times: self.times,
         }
     }

@@ -14,6 +14,7 @@ mod search;
 
 pub use outcome::{describe, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved};
 
+use super::choose::choose_configurations;
 use super::options::{Feedback, SolveOptions};
 use super::prepare::{Prepared, Progress};
 use crate::cell::{Cell, InputError};
@@ -38,8 +39,17 @@ pub fn solve(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
-    match opts.feedback {
+    let chosen = choose_configurations(cell, prepared, opts, progress)?;
+    let prepared = chosen.as_ref().unwrap_or(prepared);
+    let mut solved = match opts.feedback {
         Feedback::Greedy => greedy::solve(cell, prepared, opts, progress),
         Feedback::Search => search::solve(cell, prepared, opts, progress),
-    }
+    }?;
+    // The sequencer proves routes optimal for the configurations it is given, not the
+    // choice of configurations.
+    let found = prepared.moves.assignment().configurations();
+    let choice =
+        (0..cell.robots.len()).any(|r| (0..cell.tasks.len()).any(|t| found.at(r, t).len() > 1));
+    solved.blind_optimal &= !choice;
+    Ok(solved)
 }

@@ -5,6 +5,7 @@ use crate::cell::{Cell, InputError};
 use crate::collision::{CheckReport, Verdict};
 use crate::geometry::Vec2;
 use crate::motion::Pose;
+use crate::wcp::configurations::Assignment;
 use crate::wcp::legs::Legs;
 use crate::wcp::moves::MoveStore;
 use crate::wcp::prepare::StageTimes;
@@ -146,6 +147,8 @@ pub struct Solved {
     pub blind_optimal: bool,
     /// Why the loop stopped without a collision-free schedule.
     pub failure: Option<String>,
+    /// Which configuration each arm takes at each task (see [`Assignment`]).
+    pub assignment: Assignment,
     /// Schedules checked: the rounds for the greedy loop, the search nodes for the search.
     pub nodes: usize,
     /// Wall time per stage.

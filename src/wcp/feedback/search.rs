@@ -540,6 +540,7 @@ impl Search<'_> {
             blind_makespan: blind.makespan,
             blind_optimal: blind.optimal,
             failure,
+            assignment: self.prepared.moves.assignment().clone(),
             times: self.times,
             nodes: self.checked,
         }

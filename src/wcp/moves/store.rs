@@ -187,21 +187,50 @@ impl MoveStore {
             0 => 0,
             n => self.assignment.index(r, node_task(n)),
         };
-        let key = (r, (a, index(a)), (b, index(b)));
+        self.arm_slot_at((r, (a, index(a)), (b, index(b))))
+    }
+
+    fn arm_slot_at(&self, key: ArmKey) -> (ArmKey, Arc<Slot>) {
         let mut map = self.arm_moves.lock().unwrap_or_else(|e| e.into_inner());
         (key, map.entry(key).or_default().clone())
     }
 
-    /// Plans arm `r`'s move between nodes `a` and `b` in joint space: the straight move when
-    /// the checker certifies it clear of the fixtures, else a path around them.
-    fn plan_arm(&self, r: usize, a: usize, b: usize) -> Result<PlannedMove, MoveFailure> {
+    /// Arm `r`'s joint angles at node `n` in its configuration `k` there (home: 0).
+    fn arm_joints(&self, r: usize, (n, k): (usize, usize)) -> Option<&[f64]> {
+        let arm = self.cell.robots[r].as_arm()?;
+        match n {
+            0 => Some(&arm.home),
+            n => (self.assignment.configurations().at(r, node_task(n)).get(k)).map(|q| &q[..]),
+        }
+    }
+
+    /// The duration of arm `r`'s move between node `a` in its configuration `ka` and node
+    /// `b` in its configuration `kb`, whatever the assignment (the same both ways), planned
+    /// on first use: what choosing configurations weighs.
+    pub(crate) fn arm_duration(
+        &self,
+        r: usize,
+        a: (usize, usize),
+        b: (usize, usize),
+    ) -> Result<f64, MoveFailure> {
+        let (a, b) = if a.0 <= b.0 { (a, b) } else { (b, a) };
+        let (key, slot) = self.arm_slot_at((r, a, b));
+        slot.forward
+            .get_or_init(|| {
+                self.planned.fetch_add(1, Ordering::Relaxed);
+                self.plan_arm(key).map(Arc::new)
+            })
+            .as_ref()
+            .map(|m| m.duration)
+            .map_err(Clone::clone)
+    }
+
+    /// Plans an arm's move in joint space: the straight move when the checker certifies it
+    /// clear of the fixtures, else a path around them.
+    fn plan_arm(&self, (r, a, b): ArmKey) -> Result<PlannedMove, MoveFailure> {
         let cell = &self.cell;
         let arm = cell.robots[r].as_arm().expect("an arm");
-        let joints = |n: usize| {
-            self.assignment
-                .joints(cell, r, n)
-                .ok_or(MoveFailure::NoConfiguration)
-        };
+        let joints = |end| self.arm_joints(r, end).ok_or(MoveFailure::NoConfiguration);
         let (qa, qb) = (joints(a)?, joints(b)?);
         let model = ArmModel::new(&cell.robots[r].name, arm);
         let settings = JointPathSettings {
@@ -238,16 +267,16 @@ impl MoveStore {
     pub fn get(&self, r: usize, from: usize, to: usize) -> Result<Arc<PlannedMove>, MoveFailure> {
         let (a, b) = (from.min(to), from.max(to));
         let arm = self.cell.robots[r].as_arm().is_some();
-        let slot = match arm {
-            true => self.arm_slot(r, a, b).1,
-            false => self.slot(r, a, b),
+        let (key, slot) = match arm {
+            true => self.arm_slot(r, a, b),
+            false => ((r, (a, 0), (b, 0)), self.slot(r, a, b)),
         };
         let planned = slot
             .forward
             .get_or_init(|| {
                 self.planned.fetch_add(1, Ordering::Relaxed);
                 match arm {
-                    true => self.plan_arm(r, a, b).map(Arc::new),
+                    true => self.plan_arm(key).map(Arc::new),
                     false => self.plan(r, a, b).map(Arc::new),
                 }
             })
