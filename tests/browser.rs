@@ -243,6 +243,7 @@ fn animated_pages_in_headless_chromium() {
     check_page(&b);
     parts_page(&b);
     arms_page(&b);
+    scara_page(&b);
     hostile_names_page(&b);
     let _ = std::fs::remove_dir_all(temp_dir());
 }
@@ -500,6 +501,41 @@ fn arms_page(b: &Browser) {
     );
     assert_eq!(rows, json!(2), "one row for the arm, one for R1");
     no_console_errors(b, "arms page");
+}
+
+/// `solve`'s page of an arm cell (issue 22, item 5): each link where the exported scene's
+/// joints put it, between samples too, one status row per arm.
+fn scara_page(b: &Browser) {
+    let (page, scene_file) = (temp("scara.html"), temp("scara-scene.json"));
+    let out = workcell(&[
+        "solve",
+        &shipped("scara-cell.json"),
+        "--json",
+        "--html",
+        page.to_str().unwrap(),
+        "--export-scene",
+        scene_file.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let result: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let scene = load_scene(&scene_file).unwrap().scene;
+    let makespan = result["makespan"].as_f64().unwrap();
+    b.open(&format!("file://{}", page.display()));
+    let times = [
+        0.0,
+        0.13 * makespan,
+        0.377 * makespan,
+        0.6 * makespan + 0.01,
+        makespan,
+    ];
+    robots_follow_the_trajectories(b, &scene, &times, "scara page");
+    let rows = b.run(
+        "return document.querySelectorAll('#status tr').length;",
+        json!([]),
+    );
+    assert_eq!(rows, json!(2), "one row per arm");
+    play_and_pause(b);
+    no_console_errors(b, "scara page");
 }
 
 /// Names made to break out of the page's data or markup: the page still draws every robot

@@ -22,7 +22,7 @@ pub const MAX_SCARA_TASKS: usize = 2_000;
 /// Draws per task before the request is judged impossible.
 const ATTEMPTS_PER_TASK: usize = 500;
 /// Distance between neighbouring bases along a side (length units).
-const SPACING: f64 = 1.6;
+const SPACING: f64 = 2.0;
 /// Distance of the bases from the edge of the work area.
 const STANDOFF: f64 = 0.9;
 
@@ -205,8 +205,10 @@ fn arm(rng: &mut ChaCha8Rng, k: usize, width: f64, half_height: f64) -> Arm {
     if three {
         limits.push([-3.0, 3.0]);
     }
+    // Every arm's first link back and to the same side (neighbours stay parallel), the
+    // second folded along it.
     let fold = if elbow[1] > 0.0 { 2.3 } else { -2.3 };
-    let mut home = vec![if fold > 0.0 { -2.3 } else { 2.3 }, fold];
+    let mut home = vec![-2.3, fold];
     if three {
         home.push(0.0);
     }
