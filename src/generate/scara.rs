@@ -90,8 +90,36 @@ pub fn generate_scara_cell(req: &ScaraRequest, seed: u64, index: u64) -> Result<
         robots.push(json!({"name": "R1", "shape": [[-0.25, -0.25], [0.25, -0.25], [0.25, 0.25], [-0.25, 0.25]],
             "home": [width / 2.0 + 2.0, 0.0, 0.0], "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5}));
     }
-    let obstacles: Vec<Value> = if table {
-        // Clamps on the table, between the arms' reaches.
+    let obstacles = fixtures(&mut rng, table, per_side, width);
+    // The arms at home clear of each other and of the fixtures, before any task.
+    let bare = json!({"delta": 0.01, "robots": robots, "obstacles": obstacles, "tasks": []});
+    parse_cell(&bare.to_string(), Path::new("scara.json")).map_err(|e| e.to_string())?;
+    let mut tasks: Vec<Value> = Vec::with_capacity(req.tasks);
+    let prefix = if table { "weld" } else { "pick" };
+    let mut attempts = 0;
+    while tasks.len() < req.tasks {
+        attempts += 1;
+        if attempts > ATTEMPTS_PER_TASK * req.tasks {
+            return Err(format!("no room for {} reachable tasks", req.tasks));
+        }
+        let area = Area {
+            width,
+            half_height,
+            prefix,
+            rigid,
+        };
+        if let Some(task) = draw_task(&mut rng, &arms, &area, (&robots, &obstacles), tasks.len()) {
+            tasks.push(task);
+        }
+    }
+    let doc = json!({"delta": 0.01, "robots": robots, "obstacles": obstacles, "tasks": tasks});
+    parse_cell(&doc.to_string(), Path::new("scara.json")).map_err(|e| e.to_string())?;
+    Ok(doc)
+}
+
+/// Clamps on a table, between the arms' reaches; the end stop of a conveyor.
+fn fixtures(rng: &mut ChaCha8Rng, table: bool, per_side: usize, width: f64) -> Vec<Value> {
+    if table {
         (0..per_side)
             .map(|k| {
                 let x = -width / 2.0 + SPACING * (k as f64 + 0.5) + rng.random_range(-0.3..0.3);
@@ -106,72 +134,71 @@ pub fn generate_scara_cell(req: &ScaraRequest, seed: u64, index: u64) -> Result<
         vec![
             json!({"name": "conveyor-end", "shape": [[x, -0.4], [x + 0.3, -0.4], [x + 0.3, 0.4], [x, 0.4]]}),
         ]
-    };
-    // The arms at home clear of each other and of the fixtures, before any task.
-    let bare = json!({"delta": 0.01, "robots": robots, "obstacles": obstacles, "tasks": []});
-    parse_cell(&bare.to_string(), Path::new("scara.json")).map_err(|e| e.to_string())?;
-    let mut tasks: Vec<Value> = Vec::with_capacity(req.tasks);
-    let prefix = if table { "weld" } else { "pick" };
-    let mut attempts = 0;
-    while tasks.len() < req.tasks {
-        attempts += 1;
-        if attempts > ATTEMPTS_PER_TASK * req.tasks {
-            return Err(format!("no room for {} reachable tasks", req.tasks));
-        }
-        let x = rng.random_range(-width / 2.0..width / 2.0);
-        let y = rng.random_range(-half_height..half_height);
-        let angled = rng.random_bool(0.2);
-        let theta = rng.random_range(-std::f64::consts::PI..std::f64::consts::PI);
-        let goal = ToolGoal {
-            pos: crate::geometry::Vec2::new(x, y),
-            theta: angled.then_some(theta),
-        };
-        let mut reach: Vec<(f64, usize)> = (arms.iter().enumerate())
-            .filter(|(_, a)| {
-                let limits: Vec<Option<[f64; 2]>> = a.limits.iter().copied().map(Some).collect();
-                inverse_kinematics(a.base, &a.lengths, &limits, goal, &IkSettings::default())
-                    .is_ok()
-            })
-            .map(|(k, a)| ((a.base.pos - goal.pos).norm(), k))
-            .collect();
-        if reach.is_empty() {
-            continue;
-        }
-        reach.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let names: Vec<String> = (reach.iter().take(3))
-            .map(|&(_, k)| format!("A{}", k + 1))
-            .collect();
-        let at = if angled {
-            json!([round(x), round(y), round(theta)])
-        } else {
-            json!([round(x), round(y)])
-        };
-        let duration = rng.random_range(0.5..2.0);
-        let task = |names: &[String]| {
-            json!({"name": format!("{prefix}-{}", tasks.len() + 1), "at": at,
-                   "duration": round(duration), "robots": names})
-        };
-        // Kept for the arms that reach it clear of the clamps, if any.
-        let doc = json!({"delta": 0.01, "robots": robots, "obstacles": obstacles, "tasks": [task(&names)]});
-        let Ok(read) = parse_cell(&doc.to_string(), Path::new("scara.json")) else {
-            continue;
-        };
-        let found = configurations_found(&read.cell, &IkSettings::default());
-        let mut able: Vec<String> = (names.iter().enumerate())
-            .filter(|&(i, _)| !found.at(reach[i].1, 0).is_empty())
-            .map(|(_, n)| n.clone())
-            .collect();
-        if able.is_empty() {
-            continue;
-        }
-        if rigid && x > width / 2.0 - 1.0 {
-            able.push("R1".into());
-        }
-        tasks.push(task(&able));
     }
-    let doc = json!({"delta": 0.01, "robots": robots, "obstacles": obstacles, "tasks": tasks});
-    parse_cell(&doc.to_string(), Path::new("scara.json")).map_err(|e| e.to_string())?;
-    Ok(doc)
+}
+
+/// Where the tasks lie and what they are called.
+struct Area {
+    width: f64,
+    half_height: f64,
+    prefix: &'static str,
+    /// The cell has the rigid robot R1, which may do the tasks near its end.
+    rigid: bool,
+}
+
+/// Task number `done + 1` drawn in the area, allowed to the (at most 3) nearest arms that
+/// reach it within their limits and clear of the fixtures; `None` when none does.
+fn draw_task(
+    rng: &mut ChaCha8Rng,
+    arms: &[Arm],
+    area: &Area,
+    (robots, obstacles): (&[Value], &[Value]),
+    done: usize,
+) -> Option<Value> {
+    let x = rng.random_range(-area.width / 2.0..area.width / 2.0);
+    let y = rng.random_range(-area.half_height..area.half_height);
+    let angled = rng.random_bool(0.2);
+    let theta = rng.random_range(-std::f64::consts::PI..std::f64::consts::PI);
+    let duration = rng.random_range(0.5..2.0);
+    let goal = ToolGoal {
+        pos: crate::geometry::Vec2::new(x, y),
+        theta: angled.then_some(theta),
+    };
+    let mut reach: Vec<(f64, usize)> = (arms.iter().enumerate())
+        .filter(|(_, a)| {
+            let limits: Vec<Option<[f64; 2]>> = a.limits.iter().copied().map(Some).collect();
+            inverse_kinematics(a.base, &a.lengths, &limits, goal, &IkSettings::default()).is_ok()
+        })
+        .map(|(k, a)| ((a.base.pos - goal.pos).norm(), k))
+        .collect();
+    reach.sort_by(|a, b| a.0.total_cmp(&b.0));
+    reach.truncate(3);
+    let at = if angled {
+        json!([round(x), round(y), round(theta)])
+    } else {
+        json!([round(x), round(y)])
+    };
+    let task = |names: &[String]| {
+        json!({"name": format!("{}-{}", area.prefix, done + 1), "at": at,
+               "duration": round(duration), "robots": names})
+    };
+    let names: Vec<String> = reach.iter().map(|&(_, k)| format!("A{}", k + 1)).collect();
+    // Kept for the arms that reach it clear of the fixtures, if any.
+    let doc =
+        json!({"delta": 0.01, "robots": robots, "obstacles": obstacles, "tasks": [task(&names)]});
+    let read = parse_cell(&doc.to_string(), Path::new("scara.json")).ok()?;
+    let found = configurations_found(&read.cell, &IkSettings::default());
+    let mut able: Vec<String> = (names.iter().zip(&reach))
+        .filter(|(_, &(_, k))| !found.at(k, 0).is_empty())
+        .map(|(n, _)| n.clone())
+        .collect();
+    if able.is_empty() {
+        return None;
+    }
+    if area.rigid && x > area.width / 2.0 - 1.0 {
+        able.push("R1".into());
+    }
+    Some(task(&able))
 }
 
 /// Arm `k`: bases along the bottom side (even `k`) and the top side (odd), facing the work

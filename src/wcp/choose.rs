@@ -31,6 +31,17 @@ pub const MAX_ROUNDS: usize = 8;
 /// The arms' configurations chosen with the routes, as a [`Prepared`] whose store and
 /// bounds take them; `None` when nothing changes (no arm, a single configuration each, or
 /// [`SolveOptions::configurations`] other than [`ConfigurationChoice::Chosen`]).
+///
+/// ```
+/// use workcell::wcp::{choose_configurations, prepare, sequence, SolveOptions};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json").as_ref())?.cell;
+/// let opts = SolveOptions::default();
+/// let prepared = prepare(&cell, &opts, &())?;
+/// let before = sequence(&cell, &prepared, &[], &opts)?.makespan;
+/// let chosen = choose_configurations(&cell, &prepared, &opts, &())?.unwrap_or(prepared);
+/// assert!(sequence(&cell, &chosen, &[], &opts)?.makespan <= before);
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
 pub fn choose_configurations(
     cell: &Cell,
     prepared: &Prepared,
