@@ -122,10 +122,12 @@ pub fn parse_legs(
                 "a leg needs at least one piece".into(),
             ));
         }
+        // An arm's motion is its leg's joint-space move: it gives no primitives.
+        let arm = cell.robots[robot].as_arm().is_some();
         let pieces = list
             .iter()
             .enumerate()
-            .map(|(j, p)| piece(p, &format!("{at}.pieces[{j}]")).map_err(|(f, r)| fail(f, r)))
+            .map(|(j, p)| piece(p, &format!("{at}.pieces[{j}]"), arm).map_err(|(f, r)| fail(f, r)))
             .collect::<Result<_, _>>()?;
         out.push(LegSpec { robot, leg, pieces });
     }
@@ -149,7 +151,7 @@ fn number(
     }
 }
 
-fn piece(p: &Value, at: &str) -> Result<PieceSpec, Failure> {
+fn piece(p: &Value, at: &str, arm: bool) -> Result<PieceSpec, Failure> {
     if let Some(d) = p.get("hold") {
         let duration = number(
             Some(d),
@@ -187,11 +189,12 @@ fn piece(p: &Value, at: &str) -> Result<PieceSpec, Failure> {
             "expected a list of primitives".into(),
         ));
     };
-    if list.is_empty() {
-        return Err((
-            format!("{at}.go.primitives"),
-            "a motion needs at least one primitive".into(),
-        ));
+    if arm != list.is_empty() {
+        let reason = match arm {
+            true => "an arm moves in joint space along its leg: its motion has no primitives",
+            false => "a motion needs at least one primitive",
+        };
+        return Err((format!("{at}.go.primitives"), reason.into()));
     }
     let primitives = list
         .iter()

@@ -18,6 +18,9 @@ pub struct Sequences {
     pub waits: Vec<Wait>,
     /// Moves the feedback loop changed, as a `solve` result lists them in `legs`.
     pub legs: Vec<super::LegSpec>,
+    /// Each arm's joint angles at the tasks of its route, in order, as a `solve` result
+    /// lists them in `configurations` (empty for a robot not listed there).
+    pub configurations: Vec<Vec<Vec<f64>>>,
 }
 
 /// A wait before one of a robot's moves.
@@ -179,11 +182,70 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
         }
         _ => Vec::new(),
     };
+    let configurations = match find("configurations")?.filter(|_| whole && !blind) {
+        Some(list) if list.get() != "null" => configurations(list, file, cell, &routes)?,
+        _ => vec![Vec::new(); cell.robots.len()],
+    };
     Ok(Sequences {
         routes,
         waits,
         legs,
+        configurations,
     })
+}
+
+/// A result's `configurations`: per arm, one list of joint angles (one per link) per task
+/// of its route. Whether each puts the tool on its task is for `evaluate` to judge.
+fn configurations(
+    raw: &RawValue,
+    file: &Path,
+    cell: &Cell,
+    routes: &[Vec<usize>],
+) -> Result<Vec<Vec<Vec<f64>>>, InputError> {
+    let err = |body: Option<&str>, field: String, reason: String| {
+        InputError::new(file, body, field, reason)
+    };
+    let lists: std::collections::BTreeMap<String, Vec<Vec<f64>>> = serde_json::from_str(raw.get())
+        .map_err(|e| {
+            let reason = format!("expected each arm's list of joint angles per task: {e}");
+            err(None, "configurations".into(), reason)
+        })?;
+    let mut out = vec![Vec::new(); cell.robots.len()];
+    for (name, list) in lists {
+        let field = format!("configurations.{name}");
+        let Some(r) = cell.robots.iter().position(|x| x.name == name) else {
+            return Err(err(
+                Some(&name),
+                field,
+                "the cell has no robot of this name".into(),
+            ));
+        };
+        let Some(arm) = cell.robots[r].as_arm() else {
+            return Err(err(
+                Some(&name),
+                field,
+                "a rigid robot has no joints".into(),
+            ));
+        };
+        if list.len() != routes[r].len() {
+            let reason = format!(
+                "{} configurations for the {} tasks of its sequence",
+                list.len(),
+                routes[r].len()
+            );
+            return Err(err(Some(&name), field, reason));
+        }
+        if let Some(k) = list.iter().position(|q| q.len() != arm.links.len()) {
+            let reason = format!(
+                "{} angles for an arm of {} links",
+                list[k].len(),
+                arm.links.len()
+            );
+            return Err(err(Some(&name), format!("{field}[{k}]"), reason));
+        }
+        out[r] = list;
+    }
+    Ok(out)
 }
 
 /// For each task, the field of the list that names it (none: no list does).

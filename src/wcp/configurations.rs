@@ -284,20 +284,3 @@ fn found(cell: &Cell, ik: &IkSettings) -> (Configurations, Refusals) {
 pub(crate) fn configurations_found(cell: &Cell, ik: &IkSettings) -> Configurations {
     found(cell, ik).0
 }
-
-/// Refuses a cell with an arm until `evaluate` replays arms, after refusing (with
-/// [`task_configurations`]) any task that no robot can reach: the field names the arm.
-pub(super) fn refuse_arms(cell: &Cell) -> Result<(), InputError> {
-    let Some(r) = cell.robots.iter().position(|r| r.as_arm().is_some()) else {
-        return Ok(());
-    };
-    task_configurations(cell, &IkSettings::default())?;
-    let reason = "an arm (contract section 7): `workcell evaluate` does not replay arms yet; \
-                  `workcell solve` schedules them and `workcell check` checks the scene it \
-                  exports";
-    Err(cell.error(
-        Some(&cell.robots[r].name),
-        format!("robots[{r}].links"),
-        reason,
-    ))
-}

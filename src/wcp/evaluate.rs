@@ -1,6 +1,6 @@
 //! `workcell evaluate`: the schedule of given sequences, checked.
 
-use super::configurations::refuse_arms;
+use super::configurations::{task_configurations, Assignment};
 use super::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use super::moves::{limits, MoveStore};
 use super::options::SolveOptions;
@@ -69,12 +69,17 @@ pub fn evaluate(
     opts: &SolveOptions,
     sequences_file: &Path,
 ) -> Result<Evaluated, InputError> {
-    refuse_arms(cell)?;
     let mut times = StageTimes::default();
     let clock = Instant::now();
-    let moves = MoveStore::new(cell, &opts.planner);
+    let moves = match cell.robots.iter().any(|r| r.as_arm().is_some()) {
+        true => {
+            let assignment = given_configurations(cell, sequences, sequences_file, opts)?;
+            MoveStore::with_assignment(cell, &opts.planner, assignment)
+        }
+        false => MoveStore::new(cell, &opts.planner),
+    };
     let routes = &sequences.routes;
-    let (delays, legs) = given_legs(cell, sequences, opts);
+    let (delays, legs) = given_legs(cell, sequences, opts, &moves);
     let schedule = Schedule::build(cell, routes, &legs, &moves)
         .map_err(|e| build_error(cell, sequences, sequences_file, &moves, &delays, e))?;
     // A move whose time overflowed leaves samples the checker cannot take.
@@ -109,8 +114,51 @@ pub fn evaluate(
     })
 }
 
+/// Each arm's configuration at each task: as given in the result's `configurations`, each
+/// one of the arm's configurations there (to within rounding: the tool on the task, within
+/// the limits, clear of the fixtures), else the one it reaches soonest from home.
+fn given_configurations(
+    cell: &Cell,
+    sequences: &Sequences,
+    sequences_file: &Path,
+    opts: &SolveOptions,
+) -> Result<Assignment, InputError> {
+    let found = task_configurations(cell, &opts.ik)?;
+    let mut assignment = Assignment::nearest_home(cell, std::sync::Arc::new(found));
+    for (r, given) in sequences.configurations.iter().enumerate() {
+        for (k, q) in given.iter().enumerate() {
+            let t = sequences.routes[r][k];
+            let same = |c: &[f64]| {
+                (c.iter().zip(q)).all(|(a, b)| (a - b).abs() <= JOINT_MATCH_TOL * (1.0 + a.abs()))
+            };
+            let at = assignment.configurations().at(r, t);
+            let Some(i) = at.iter().position(|c| same(c)) else {
+                let name = &cell.robots[r].name;
+                let reason = format!(
+                    "these joint angles are not a configuration of {name} at task \"{}\" (the \
+                     tool on the task, within the joint limits, clear of the fixtures)",
+                    cell.tasks[t].name
+                );
+                let field = format!("configurations.{name}[{k}]");
+                return Err(InputError::new(sequences_file, Some(name), field, reason));
+            };
+            assignment = assignment.with(r, t, i);
+        }
+    }
+    Ok(assignment)
+}
+
+/// How far (relative to the angle's size) a given joint angle may be from the configuration
+/// found: the rounding of a result written and read back.
+const JOINT_MATCH_TOL: f64 = 1e-9;
+
 /// The waits and the changed moves given, as the schedule's legs.
-fn given_legs(cell: &Cell, sequences: &Sequences, opts: &SolveOptions) -> (Vec<Delay>, Legs) {
+fn given_legs(
+    cell: &Cell,
+    sequences: &Sequences,
+    opts: &SolveOptions,
+    moves: &MoveStore,
+) -> (Vec<Delay>, Legs) {
     let routes = &sequences.routes;
     let delays: Vec<Delay> = sequences
         .waits
@@ -131,7 +179,26 @@ fn given_legs(cell: &Cell, sequences: &Sequences, opts: &SolveOptions) -> (Vec<D
         let pieces: Vec<Piece> = spec
             .pieces
             .iter()
-            .map(|p| piece(cell, spec.robot, p, opts))
+            .map(|p| match (cell.robots[spec.robot].as_arm(), p) {
+                // An arm's motion is its leg's joint-space move, maybe slower.
+                (Some(_), PieceSpec::Go { scale, .. }) => {
+                    let nodes = route_nodes(&routes[spec.robot]);
+                    let (from, to) = (nodes[spec.leg], nodes[(spec.leg + 1).min(nodes.len() - 1)]);
+                    match moves.get(spec.robot, from, to) {
+                        Ok(motion) => Piece::Go {
+                            motion,
+                            scale: *scale,
+                        },
+                        // No move: the leg stays where it starts, and the schedule refuses
+                        // it as a leg that does not reach its end.
+                        Err(_) => Piece::Hold {
+                            duration: 0.0,
+                            reason: HoldReason::Pause,
+                        },
+                    }
+                }
+                _ => piece(cell, spec.robot, p, opts),
+            })
             .collect();
         let new = Leg {
             pieces: Some(pieces.into()),

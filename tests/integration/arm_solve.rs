@@ -208,3 +208,66 @@ fn generate_scara_from_the_command_line() {
         assert_eq!(o.status.code(), Some(2), "{args:?}");
     }
 }
+
+/// Issue 22, item 4: `evaluate` replays an arm cell's result (its configurations, waits and
+/// slower legs) to the same makespan, certified; without the waits it finds the collision;
+/// joint angles that are not a configuration at the task are refused by field.
+#[cfg(feature = "cli")]
+#[test]
+fn evaluate_replays_arm_results() {
+    use crate::common::{temp_dir_made, workcell};
+    use serde_json::Value;
+    use workcell::generate::{generate_scara_cell, ScaraRequest};
+    let dir = temp_dir_made("arm-solve", "evaluate");
+    let generated = dir.join("scara-6x12-1-1.json");
+    let doc = generate_scara_cell(&ScaraRequest { arms: 6, tasks: 12 }, 1, 1).unwrap();
+    std::fs::write(&generated, doc.to_string()).unwrap();
+    let scara = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/scara-cell.json");
+    let json = |o: &std::process::Output| -> Value {
+        serde_json::from_slice(&o.stdout)
+            .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)))
+    };
+    let mut slowed = false;
+    for cell in [scara, generated.to_str().unwrap()] {
+        // A node budget, not a time limit: the same answer on any machine.
+        let solved = json(&workcell(&[
+            "solve",
+            cell,
+            "--json",
+            "--search-nodes",
+            "200",
+        ]));
+        assert_eq!(solved["collision_free"], true);
+        slowed |= solved["legs"].as_array().is_some_and(|l| !l.is_empty());
+        let result = dir.join("result.json");
+        std::fs::write(&result, solved.to_string()).unwrap();
+        let o = workcell(&["evaluate", cell, result.to_str().unwrap(), "--json"]);
+        assert_eq!(o.status.code(), Some(0));
+        let replayed = json(&o);
+        assert_eq!(replayed["makespan"], solved["makespan"], "{cell}");
+        assert_eq!(replayed["collision_free"], true);
+    }
+    assert!(slowed, "a slower arm leg replayed");
+    // The shipped cell's arms collide without their wait.
+    let mut solved = json(&workcell(&["solve", scara, "--json"]));
+    solved.as_object_mut().unwrap().remove("waits");
+    let result = dir.join("no-wait.json");
+    std::fs::write(&result, solved.to_string()).unwrap();
+    let o = workcell(&["evaluate", scara, result.to_str().unwrap()]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    // A configuration off the task.
+    solved["configurations"]["A1"][0][0] = serde_json::json!(0.123);
+    std::fs::write(&result, solved.to_string()).unwrap();
+    let o = workcell(&["evaluate", scara, result.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("configurations.A1[0]") && err.contains("not a configuration"),
+        "{err}"
+    );
+}
