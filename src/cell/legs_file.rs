@@ -30,10 +30,14 @@ pub struct LegSpec {
 /// One piece of a changed leg.
 #[derive(Clone, Debug, PartialEq)]
 pub enum PieceSpec {
-    /// A motion: primitives one after the other, `scale` times slower than timed.
+    /// A motion: primitives one after the other (an arm: through joint-space waypoints),
+    /// `scale` times slower than timed.
     Go {
-        /// The primitives.
+        /// The primitives (none for an arm).
         primitives: Vec<PrimitiveSpec>,
+        /// An arm's waypoints in joint space, at rest at each, start and end included; none:
+        /// the leg's planned move.
+        joints: Vec<Vec<f64>>,
         /// Time stretch, at least 1.
         scale: f64,
     },
@@ -122,12 +126,17 @@ pub fn parse_legs(
                 "a leg needs at least one piece".into(),
             ));
         }
-        // An arm's motion is its leg's joint-space move: it gives no primitives.
+        // An arm's motion is in joint space: no primitives.
         let arm = cell.robots[robot].as_arm().is_some();
         let pieces = list
             .iter()
             .enumerate()
-            .map(|(j, p)| piece(p, &format!("{at}.pieces[{j}]"), arm).map_err(|(f, r)| fail(f, r)))
+            .map(|(j, p)| {
+                let at = format!("{at}.pieces[{j}]");
+                let p = piece(p, &at, arm).map_err(|(f, r)| fail(f, r))?;
+                check_joints(&p, cell, robot).map_err(|(f, r)| fail(format!("{at}.{f}"), r))?;
+                Ok(p)
+            })
             .collect::<Result<_, _>>()?;
         out.push(LegSpec { robot, leg, pieces });
     }
@@ -201,7 +210,47 @@ fn piece(p: &Value, at: &str, arm: bool) -> Result<PieceSpec, Failure> {
         .enumerate()
         .map(|(i, q)| primitive(q, &format!("{at}.go.primitives[{i}]")))
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(PieceSpec::Go { primitives, scale })
+    let joints = match go.get("joints") {
+        None => Vec::new(),
+        Some(_) if !arm => {
+            let reason = "`joints` belongs to an arm's motion, not to a rigid robot's";
+            return Err((format!("{at}.go.joints"), reason.into()));
+        }
+        Some(list) => serde_json::from_value::<Vec<Vec<f64>>>(list.clone())
+            .ok()
+            .filter(|w| w.len() >= 2)
+            .ok_or_else(|| {
+                let reason = "expected at least two lists of joint angles (start and end)";
+                (format!("{at}.go.joints"), reason.to_owned())
+            })?,
+    };
+    Ok(PieceSpec::Go {
+        primitives,
+        joints,
+        scale,
+    })
+}
+
+/// An arm's waypoints one angle per joint, each within the joint's limits (field relative
+/// to the leg).
+fn check_joints(p: &PieceSpec, cell: &Cell, robot: usize) -> Result<(), Failure> {
+    let (PieceSpec::Go { joints, .. }, Some(arm)) = (p, cell.robots[robot].as_arm()) else {
+        return Ok(());
+    };
+    for (w, q) in joints.iter().enumerate() {
+        let at = format!("go.joints[{w}]");
+        if q.len() != arm.links.len() || q.iter().any(|a| !a.is_finite()) {
+            let reason = format!("expected {} finite angles, one per joint", arm.links.len());
+            return Err((at, reason));
+        }
+        for (j, (&a, range)) in q.iter().zip(&arm.limits.range).enumerate() {
+            if let Some([lo, hi]) = range.filter(|[lo, hi]| !(*lo..=*hi).contains(&a)) {
+                let reason = format!("joint {j} at {a}, outside its limits [{lo}, {hi}]");
+                return Err((at, reason));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A primitive of a motion: `path` (at least two finite points), `theta`, `turn` (at most π).

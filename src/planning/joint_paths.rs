@@ -209,6 +209,25 @@ impl ArmModel {
         Some(tree.nodes.len() - 1)
     }
 
+    /// The move through `waypoints` (at least one), rest to rest at each: what
+    /// [`ArmModel::joint_path`] returns for its waypoints, sample for sample, so that a path
+    /// written as its waypoints is replayed exactly.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, Parts};
+    /// use workcell::motion::{JointLimits, Pose};
+    /// use workcell::planning::{joint_move, ArmModel};
+    /// let bar = Parts::new(vec![ConvexPolygon::from_vertices(&[[-0.05, -0.05], [1.05, -0.05], [1.05, 0.05], [-0.05, 0.05]])?])?;
+    /// let limits = JointLimits { range: vec![None], max_speed: vec![1.0], max_accel: vec![1.0] };
+    /// let arm = ArmModel { name: "A1".into(), base: Pose::new(0.0, 0.0, 0.0), links: vec![(1.0, bar)], limits };
+    /// let there = arm.through(&[vec![0.0], vec![1.0]], 4);
+    /// assert_eq!(there, joint_move(&[0.0], &[1.0], &arm.limits, 4));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn through(&self, waypoints: &[Vec<f64>], samples_per_phase: usize) -> JointMove {
+        self.chained(waypoints, samples_per_phase)
+    }
+
     /// The rest-to-rest moves between consecutive waypoints, one after the other.
     fn chained(&self, waypoints: &[Vec<f64>], samples_per_phase: usize) -> JointMove {
         let mut samples: Vec<JointSample> = Vec::new();

@@ -634,6 +634,7 @@ mod tests {
         PieceJson::Go {
             go: GoJson {
                 primitives: Vec::new(),
+                joints: Vec::new(),
                 scale,
             },
         }

@@ -10,6 +10,7 @@ use super::time_axis::{culprit, first_infinite_time, Stretch};
 use crate::cell::{number, Cell, InputError, PieceSpec, Sequences};
 use crate::collision::{check, CheckReport};
 use crate::geometry::Vec2;
+use crate::planning::ArmModel;
 use crate::planning::{time_primitives, Primitive};
 use std::path::Path;
 use std::sync::Arc;
@@ -181,6 +182,14 @@ fn given_legs(
             .iter()
             .map(|p| match (cell.robots[spec.robot].as_arm(), p) {
                 // An arm's motion is its leg's joint-space move, maybe slower.
+                (Some(arm), PieceSpec::Go { scale, joints, .. }) if !joints.is_empty() => {
+                    let model = ArmModel::new(&cell.robots[spec.robot].name, arm);
+                    let through = model.through(joints, opts.planner.samples_per_phase);
+                    Piece::Go {
+                        motion: Arc::new(model.planned(&through)),
+                        scale: *scale,
+                    }
+                }
                 (Some(_), PieceSpec::Go { scale, .. }) => {
                     let nodes = route_nodes(&routes[spec.robot]);
                     let (from, to) = (nodes[spec.leg], nodes[(spec.leg + 1).min(nodes.len() - 1)]);
@@ -449,7 +458,9 @@ fn piece(cell: &Cell, r: usize, spec: &PieceSpec, opts: &SolveOptions) -> Piece 
                 HoldReason::Pause
             },
         },
-        PieceSpec::Go { primitives, scale } => {
+        PieceSpec::Go {
+            primitives, scale, ..
+        } => {
             let robot = cell.rigid(r);
             let limits = limits(robot);
             let primitives: Vec<Primitive> = primitives

@@ -5,6 +5,7 @@ use super::feedback::{Remedy, RemedyKind};
 use super::legs::{HoldReason, Legs, Piece};
 use super::schedule::{route_nodes, Activity};
 use crate::cell::Cell;
+use crate::motion::JointSample;
 use serde::Serialize;
 
 /// What a round's remedy changed, serialised under the remedy's name.
@@ -227,8 +228,12 @@ pub enum PieceJson {
 /// A motion of a changed leg.
 #[derive(Serialize)]
 pub struct GoJson {
-    /// Rest-to-rest primitives, one after the other.
+    /// Rest-to-rest primitives, one after the other (none for an arm).
     pub primitives: Vec<PrimitiveJson>,
+    /// An arm's joint angles where it rests on the way, start and end included (the
+    /// joint-space waypoints of its motion); absent for a rigid robot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<Vec<f64>>,
     /// Time stretch (1 as timed).
     pub scale: f64,
 }
@@ -289,6 +294,7 @@ pub fn legs_json(cell: &Cell, routes: &[Vec<usize>], legs: &Legs) -> Vec<LegJson
                                     turn: q.turn,
                                 })
                                 .collect(),
+                            joints: rests(&motion.joints),
                             scale: *scale,
                         },
                     },
@@ -310,4 +316,14 @@ pub fn legs_json(cell: &Cell, routes: &[Vec<usize>], legs: &Legs) -> Vec<LegJson
         }
     }
     out
+}
+
+/// The joint angles of an arm's motion where it is at rest: its start, every waypoint, its
+/// end (none for a rigid robot's motion).
+fn rests(joints: &[JointSample]) -> Vec<Vec<f64>> {
+    let last = joints.len().saturating_sub(1);
+    (joints.iter().enumerate())
+        .filter(|&(k, s)| k == 0 || k == last || s.qd.iter().all(|&v| v == 0.0))
+        .map(|(_, s)| s.q.clone())
+        .collect()
 }

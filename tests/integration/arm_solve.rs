@@ -227,7 +227,7 @@ fn evaluate_replays_arm_results() {
         serde_json::from_slice(&o.stdout)
             .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)))
     };
-    let mut slowed = false;
+    let mut slowed = None;
     for cell in [scara, generated.to_str().unwrap()] {
         // A node budget, not a time limit: the same answer on any machine.
         let solved = json(&workcell(&[
@@ -238,7 +238,9 @@ fn evaluate_replays_arm_results() {
             "200",
         ]));
         assert_eq!(solved["collision_free"], true);
-        slowed |= solved["legs"].as_array().is_some_and(|l| !l.is_empty());
+        if solved["legs"].as_array().is_some_and(|l| !l.is_empty()) {
+            slowed = Some((cell, solved.clone()));
+        }
         let result = dir.join("result.json");
         std::fs::write(&result, solved.to_string()).unwrap();
         let o = workcell(&["evaluate", cell, result.to_str().unwrap(), "--json"]);
@@ -247,7 +249,53 @@ fn evaluate_replays_arm_results() {
         assert_eq!(replayed["makespan"], solved["makespan"], "{cell}");
         assert_eq!(replayed["collision_free"], true);
     }
-    assert!(slowed, "a slower arm leg replayed");
+    let (cell, solved) = slowed.expect("a slower arm leg replayed");
+    // An arm's changed leg gives its joint-space waypoints; bad ones are refused by field.
+    let go = &solved["legs"][0]["pieces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p.get("go").is_some())
+        .expect("a motion")["go"];
+    let joints = go["joints"].as_array().expect("an arm's waypoints");
+    assert!(joints.len() >= 2 && go["primitives"].as_array().unwrap().is_empty());
+    let at = |s: &Value| -> String {
+        let legs = s["legs"][0]["pieces"].as_array().unwrap();
+        let j = legs.iter().position(|p| p.get("go").is_some()).unwrap();
+        format!("legs[0].pieces[{j}].go.joints")
+    };
+    let field = at(&solved);
+    let tampered = |edit: &dyn Fn(&mut Value)| -> (Option<i32>, String) {
+        let mut s = solved.clone();
+        let pieces = s["legs"][0]["pieces"].as_array_mut().unwrap();
+        let go = pieces.iter_mut().find(|p| p.get("go").is_some()).unwrap();
+        edit(&mut go["go"]["joints"]);
+        let result = dir.join("tampered.json");
+        std::fs::write(&result, s.to_string()).unwrap();
+        let o = workcell(&["evaluate", cell, result.to_str().unwrap()]);
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
+    // One angle too many.
+    let (code, err) = tampered(&|j| j[0].as_array_mut().unwrap().push(0.0.into()));
+    assert!(
+        code == Some(2) && err.contains(&format!("{field}[0]")),
+        "{err}"
+    );
+    // Far outside any joint's limits (the generated arms' joints all have limits).
+    let (code, err) = tampered(&|j| j[1][1] = 40.0.into());
+    assert!(
+        code == Some(2) && err.contains(&format!("{field}[1]")),
+        "{err}"
+    );
+    // Starting elsewhere than the arm stands: a jump, named by its leg.
+    let (code, err) = tampered(&|j| {
+        let a = j[0][0].as_f64().unwrap();
+        j[0][0] = (a + 0.01).into();
+    });
+    assert!(code == Some(2) && err.contains("legs[0]"), "{err}");
     // The shipped cell's arms collide without their wait.
     let mut solved = json(&workcell(&["solve", scara, "--json"]));
     solved.as_object_mut().unwrap().remove("waits");
