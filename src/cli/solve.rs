@@ -54,6 +54,11 @@ pub struct FeedbackArgs {
     /// when it is not reached).
     #[arg(long, default_value_t = 60.0, value_parser = positive_seconds, allow_negative_numbers = true)]
     search_time: f64,
+    /// Stop when the search stops paying: once it has checked this many schedules, and at
+    /// least as many as it took to find it, since its best certified schedule (0, the
+    /// default: search until a budget is spent).
+    #[arg(long, default_value_t = 0)]
+    search_patience: u64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour, step-aside (default: all).
     #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside"])]
@@ -75,6 +80,7 @@ impl FeedbackArgs {
             _ => Feedback::Search,
         };
         opts.search.max_nodes = self.search_nodes as usize;
+        opts.search.patience = (self.search_patience > 0).then_some(self.search_patience as usize);
         opts.search.time_limit = std::time::Duration::try_from_secs_f64(self.search_time)
             .unwrap_or(std::time::Duration::MAX);
         if let Some(names) = &self.remedies {

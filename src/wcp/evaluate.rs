@@ -422,13 +422,23 @@ fn limits_reason(
     resolution: &str,
     what_lost: &str,
 ) -> String {
-    let robot = cell.rigid(r);
-    let limits = format!(
-        "max_speed {}, max_accel {}, max_turn_rate {}",
-        number(robot.max_speed),
-        number(robot.max_accel),
-        number(robot.max_turn_rate)
-    );
+    let list = |v: &[f64]| v.iter().map(|&x| number(x)).collect::<Vec<_>>().join(", ");
+    let limits = match cell.robots[r].as_arm() {
+        Some(arm) => format!(
+            "max_joint_speed [{}], max_joint_accel [{}]",
+            list(&arm.limits.max_speed),
+            list(&arm.limits.max_accel)
+        ),
+        None => {
+            let robot = cell.rigid(r);
+            format!(
+                "max_speed {}, max_accel {}, max_turn_rate {}",
+                number(robot.max_speed),
+                number(robot.max_accel),
+                number(robot.max_turn_rate)
+            )
+        }
+    };
     let the_move = blamed.activity.describe(cell, r);
     let length = number(blamed.length);
     if !blamed.length.is_finite() {

@@ -102,6 +102,12 @@ pub struct SearchOptions {
     pub time_limit: Duration,
     /// The remedies the search may use.
     pub remedies: Remedies,
+    /// When the search stops paying: it ends once it has checked this many schedules, and
+    /// at least as many as it took to find it, since its best certified schedule. `None`:
+    /// it searches until a budget is spent or no node is left (the default: on junctions
+    /// the search still finds better schedules after thousands of checks). Counted in
+    /// schedules, not seconds, so that the result does not depend on the machine.
+    pub patience: Option<usize>,
 }
 
 impl Default for SearchOptions {
@@ -110,6 +116,7 @@ impl Default for SearchOptions {
             max_nodes: 5000,
             time_limit: Duration::from_secs(60),
             remedies: Remedies::ALL,
+            patience: None,
         }
     }
 }

@@ -320,7 +320,7 @@ pub fn legs_json(cell: &Cell, routes: &[Vec<usize>], legs: &Legs) -> Vec<LegJson
 
 /// The joint angles of an arm's motion where it is at rest: its start, every waypoint, its
 /// end (none for a rigid robot's motion).
-fn rests(joints: &[JointSample]) -> Vec<Vec<f64>> {
+pub(crate) fn rests(joints: &[JointSample]) -> Vec<Vec<f64>> {
     let last = joints.len().saturating_sub(1);
     (joints.iter().enumerate())
         .filter(|&(k, s)| k == 0 || k == last || s.qd.iter().all(|&v| v == 0.0))

@@ -319,3 +319,67 @@ fn evaluate_replays_arm_results() {
         "{err}"
     );
 }
+
+/// Issue 22, item 4: an arm detours in joint space round an idle arm in its way, or the idle
+/// arm draws in while the other passes; `evaluate` replays either (its joint-space
+/// waypoints) to the same makespan, certified. Time alone cannot help: the idle arm never
+/// leaves.
+#[cfg(feature = "cli")]
+#[test]
+fn arms_detour_and_step_aside_in_joint_space() {
+    use crate::common::{temp_dir_made, workcell};
+    use serde_json::Value;
+    let cell = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/cells/arm-crossing.json");
+    let dir = temp_dir_made("arm-solve", "crossing");
+    for remedy in ["detour", "step-aside"] {
+        let o = workcell(&["solve", cell, "--json", "--remedies", remedy]);
+        assert_eq!(o.status.code(), Some(0), "{remedy}");
+        let solved: Value = serde_json::from_slice(&o.stdout).unwrap();
+        let used: Vec<&str> = (solved["feedback"].as_array().unwrap().iter())
+            .filter_map(|r| r["remedy"].as_str())
+            .collect();
+        assert!(
+            !used.is_empty() && used.iter().all(|r| *r == remedy),
+            "{used:?}"
+        );
+        let result = dir.join(format!("{remedy}.json"));
+        std::fs::write(&result, solved.to_string()).unwrap();
+        let o = workcell(&["evaluate", cell, result.to_str().unwrap(), "--json"]);
+        assert_eq!(o.status.code(), Some(0), "{remedy}");
+        let replayed: Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(replayed["makespan"], solved["makespan"], "{remedy}");
+        assert_eq!(replayed["collision_free"], true);
+    }
+    for remedy in ["wait", "pause", "slow"] {
+        let o = workcell(&["solve", cell, "--remedies", remedy]);
+        assert_eq!(o.status.code(), Some(1), "{remedy}");
+    }
+    // A pause splits an arm's move at a configuration on its way: replayed the same.
+    let doc = workcell::generate::generate_scara_cell(
+        &workcell::generate::ScaraRequest { arms: 6, tasks: 24 },
+        1,
+        0,
+    )
+    .unwrap();
+    let generated = dir.join("scara-6x24-1-0.json");
+    std::fs::write(&generated, doc.to_string()).unwrap();
+    let cell = generated.to_str().unwrap();
+    let o = workcell(&[
+        "solve",
+        cell,
+        "--json",
+        "--remedies",
+        "pause",
+        "--search-nodes",
+        "100",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let solved: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(solved["feedback"][0]["remedy"], "pause");
+    let result = dir.join("pause.json");
+    std::fs::write(&result, solved.to_string()).unwrap();
+    let o = workcell(&["evaluate", cell, result.to_str().unwrap(), "--json"]);
+    let replayed: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(replayed["makespan"], solved["makespan"]);
+    assert_eq!(replayed["collision_free"], true);
+}

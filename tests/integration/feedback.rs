@@ -349,3 +349,27 @@ fn a_resequencing_on_a_hundred_task_cell_is_a_local_repair() {
     );
     assert_eq!(solved.nodes, 114);
 }
+
+/// `patience` ends the search once it stops paying, and only ends it sooner: the answer is
+/// the one a budget of that many schedules gives.
+#[test]
+fn patience_ends_the_search_once_it_stops_paying() {
+    let cell = conflict_cell(ConflictKind::Junction, 0);
+    let mut opts = SolveOptions::default();
+    opts.search.patience = Some(300);
+    let patient = solve_with(&cell, &opts);
+    let checked = patient.nodes;
+    assert!(patient.collision_free);
+    assert!(
+        checked > 300 && checked < opts.search.max_nodes,
+        "{checked}"
+    );
+    let mut budget = SolveOptions::default();
+    budget.search.max_nodes = checked;
+    let same = solve_with(&cell, &budget);
+    assert_eq!(same.nodes, checked);
+    assert_eq!(same.schedule.makespan, patient.schedule.makespan);
+    // Without it, the whole budget is spent, and finds better.
+    let whole = solve_with(&cell, &SolveOptions::default());
+    assert!(whole.nodes > checked && whole.schedule.makespan < patient.schedule.makespan);
+}

@@ -132,6 +132,8 @@ struct Search<'a> {
     blind_makespan: f64,
     /// The certified node of least makespan so far.
     best: Option<usize>,
+    /// Schedules checked when it was found.
+    best_at: usize,
     /// The colliding node whose first collision came latest.
     furthest: Option<usize>,
 }
@@ -160,6 +162,7 @@ pub(super) fn solve(
         checked: 0,
         blind_makespan: blind.makespan,
         best: None,
+        best_at: 0,
         furthest: None,
     };
     let legs = default_legs(cell.robots.len());
@@ -187,7 +190,7 @@ pub(super) fn solve(
     let mut stop = None;
     while let Some(Reverse((.., id))) = search.queue.pop() {
         stop = search.budget_spent(started);
-        if stop.is_some() {
+        if stop.is_some() || search.stalled() {
             break;
         }
         if !search.worth(id) {
@@ -228,6 +231,17 @@ impl Search<'_> {
             ));
         }
         None
+    }
+
+    /// Whether the search has stopped paying (see [`SearchOptions::patience`]): a node
+    /// found late earns as long a search again.
+    ///
+    /// [`SearchOptions::patience`]: crate::wcp::SearchOptions::patience
+    fn stalled(&self) -> bool {
+        let Some(patience) = self.opts.search.patience else {
+            return false;
+        };
+        self.best.is_some() && self.checked - self.best_at >= patience.max(self.best_at)
     }
 
     /// The node the search answers with, and why it is not collision-free if it is not: the
@@ -337,6 +351,7 @@ impl Search<'_> {
             if free {
                 if self.worth(id) {
                     self.best = Some(id);
+                    self.best_at = self.checked;
                 }
             } else if colliding {
                 let t = self.collision(id).map(|c| c.time);

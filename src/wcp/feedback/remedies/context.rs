@@ -2,7 +2,8 @@
 //! the schedule being changed ([`View`]), which robot yields to which ([`Side`]), and the
 //! helpers that find a leg's window, its nodes and pieces, and make the changed schedule.
 
-use crate::cell::Cell;
+use crate::cell::{Cell, RobotKind};
+use crate::geometry::{closest_features, convex_hull, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::wcp::feedback::clearing::{clears, least};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
@@ -172,6 +173,101 @@ pub(super) fn pieces_of(ctx: &Ctx, view: &View, x: usize, m: usize) -> Option<Ve
             };
             Some(vec![Piece::Go { motion, scale: 1.0 }])
         }
+    }
+}
+
+/// Samples of a moving robot per convex piece of the region it sweeps (a detour's
+/// obstacle, what a parked robot keeps clear of).
+const SWEEP_CHUNK: usize = 8;
+
+/// The region robot `y` occupies over `[t0, t1]`: for each of its convex pieces (each part
+/// of each link of an arm), the hulls of short runs of its placements; where it stands,
+/// the pieces themselves.
+pub(super) fn occupancy(ctx: &Ctx, view: &View, y: usize, t0: f64, t1: f64) -> Vec<ConvexPolygon> {
+    let ys = &view.robots[y];
+    let robot = &ctx.cell.robots[y];
+    let mut times = vec![t0];
+    times.extend(ys.samples.iter().map(|s| s.t).filter(|&t| t > t0 && t < t1));
+    times.push(t1);
+    let mut placements: Vec<Vec<Vec<Vec2>>> = times
+        .iter()
+        .map(|&t| {
+            (ys.placed(robot, t).into_iter())
+                .flat_map(|(pieces, at)| pieces.iter().map(move |p| placed(p, at)))
+                .collect()
+        })
+        .collect();
+    placements.dedup();
+    // Piece by piece: a robot of parts leaves free what lies between its parts (a gripper's
+    // opening), which the hull of the whole robot would close.
+    let mut out = Vec::new();
+    for piece in 0..placements[0].len() {
+        let mut start = 0;
+        loop {
+            let end = (start + SWEEP_CHUNK).min(placements.len() - 1);
+            let points: Vec<Vec2> = (placements[start..=end].iter())
+                .flat_map(|p| p[piece].iter().copied())
+                .collect();
+            let pts: Vec<[f64; 2]> = convex_hull(points).iter().map(|v| [v.x, v.y]).collect();
+            if let Ok((polygon, _)) = ConvexPolygon::new(&pts) {
+                out.push(polygon);
+            }
+            if end == placements.len() - 1 {
+                break;
+            }
+            start = end;
+        }
+    }
+    out
+}
+
+/// The vertices of `piece` placed at `at`.
+fn placed(piece: &ConvexPolygon, at: crate::motion::Pose) -> Vec<Vec2> {
+    let posed = Posed::new(piece, at.pos.x, at.pos.y, at.theta);
+    (0..posed.len()).map(|i| posed.vertex(i)).collect()
+}
+
+/// Whether every piece of `pieces` placed lies farther than `margin` from every polygon of
+/// `region` (in world coordinates).
+pub(super) fn apart(
+    pieces: &[(&[ConvexPolygon], crate::motion::Pose)],
+    region: &[ConvexPolygon],
+    margin: f64,
+) -> bool {
+    let tol = WalkTolerances::default();
+    // Bounding discs first: most pairs are far apart.
+    let discs: Vec<(Vec2, f64)> = (region.iter())
+        .map(|o| {
+            let c = o.centroid();
+            let r = o
+                .vertices()
+                .iter()
+                .fold(0.0, |m: f64, v| m.max((v - c).norm()));
+            (c, r)
+        })
+        .collect();
+    pieces.iter().all(|(parts, at)| {
+        parts.iter().all(|p| {
+            let posed = Posed::new(p, at.pos.x, at.pos.y, at.theta);
+            region.iter().zip(&discs).all(|(o, (c, r))| {
+                if (posed.center() - c).norm() > p.radius() + r + margin {
+                    return true;
+                }
+                let other = Posed::new(o, 0.0, 0.0, 0.0);
+                closest_features(&posed, &other, None, &tol).distance > margin
+            })
+        })
+    })
+}
+
+/// How far a robot's body reaches from the point it is placed by: a rigid robot's radius;
+/// an arm's largest link radius (about its joint).
+pub(super) fn body_radius(cell: &Cell, r: usize) -> f64 {
+    match &cell.robots[r].kind {
+        RobotKind::Rigid(robot) => robot.shape.radius(),
+        RobotKind::Arm(arm) => (arm.links.iter())
+            .map(|(_, body)| body.hull().radius())
+            .fold(0.0, f64::max),
     }
 }
 

@@ -1,10 +1,10 @@
 //! Detours: the leg re-planned with the other robot as an obstacle, its pose if it stands
 //! or the region it sweeps over the conflict window if it moves.
 
-use super::context::{child, earliest, leg_nodes, leg_window, pieces_of, Child, Ctx, Side, View};
-use crate::geometry::convex_hull;
-use crate::geometry::{ConvexPolygon, Posed, Vec2};
-use crate::motion::Pose;
+use super::context::{
+    body_radius, child, earliest, leg_nodes, leg_window, occupancy, pieces_of, Child, Ctx, Side,
+    View,
+};
 use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, Leg, Piece};
@@ -14,51 +14,6 @@ use crate::wcp::schedule::Activity;
 /// Half-width of the short detour window about the contact, in the time the detouring
 /// robot takes at full speed to cover the two robots' radii summed.
 const DETOUR_REACH: f64 = 2.0;
-/// Samples of a moving robot per convex piece of the region it sweeps (a detour's
-/// obstacle).
-const SWEEP_CHUNK: usize = 8;
-
-/// runs of its samples while it moves.
-fn occupancy(ctx: &Ctx, view: &View, y: usize, t0: f64, t1: f64) -> Vec<ConvexPolygon> {
-    let ys = &view.robots[y];
-    let mut poses = vec![ys.pose_at(t0)];
-    poses.extend(
-        ys.samples
-            .iter()
-            .filter(|s| s.t > t0 && s.t < t1)
-            .map(|s| Pose {
-                pos: s.pos,
-                theta: s.theta,
-            }),
-    );
-    poses.push(ys.pose_at(t1));
-    poses.dedup();
-    // Piece by piece: a robot of parts leaves free what lies between its parts (a gripper's
-    // opening), which the hull of the whole robot would close.
-    let mut out = Vec::new();
-    for piece in ctx.cell.rigid(y).pieces() {
-        let placed = |p: Pose| -> Vec<Vec2> {
-            let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
-            (0..posed.len()).map(|i| posed.vertex(i)).collect()
-        };
-        let mut start = 0;
-        loop {
-            let end = (start + SWEEP_CHUNK).min(poses.len() - 1);
-            let points: Vec<Vec2> = poses[start..=end].iter().flat_map(|&p| placed(p)).collect();
-            let hull = convex_hull(points);
-            let pts: Vec<[f64; 2]> = hull.iter().map(|v| [v.x, v.y]).collect();
-            if let Ok((polygon, _)) = ConvexPolygon::new(&pts) {
-                out.push(polygon);
-            }
-            if end == poses.len() - 1 {
-                break;
-            }
-            start = end;
-        }
-    }
-    out
-}
-
 /// Re-plan the leg around the other robot.
 pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let m = side.sx.leg?;
@@ -76,7 +31,7 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     }];
     if matches!(side.sy.activity, Activity::Move { .. }) {
         let robot = ctx.cell.rigid(side.x);
-        let reach = robot.shape.radius() + ctx.cell.rigid(side.y).shape.radius();
+        let reach = robot.shape.radius() + body_radius(ctx.cell, side.y);
         let tau = DETOUR_REACH * reach / robot.max_speed;
         let (w0, w1) = windows[0];
         let near = ((side.t - tau).max(w0), (side.t + tau).min(w1));
@@ -134,6 +89,7 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
 mod tests {
     use super::super::context::TestCell;
     use super::*;
+    use crate::geometry::{ConvexPolygon, Vec2};
 
     /// The region a robot of parts occupies is its parts', not its hull's: between the two
     /// feet of a gantry another robot may pass.

@@ -21,6 +21,7 @@ use crate::wcp::legs::{leg, Leg};
 use crate::wcp::schedule::{Activity, Collision};
 use rayon::prelude::*;
 
+mod arm;
 mod context;
 mod detour;
 mod pause;
@@ -44,13 +45,20 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
     let sa = c.segments.0;
     let set = ctx.opts.search.remedies;
     type Job = fn(&Ctx, &View, &Side) -> Option<Child>;
-    let kinds: [(bool, Job); 5] = [
-        (set.wait, wait),
-        (set.pause, pause),
-        (set.slow, slow),
-        (set.detour, detour),
-        (set.step_aside, step_aside),
-    ];
+    // An arm pauses, detours and steps aside in joint space.
+    let kinds = |x: usize| -> [(bool, Job); 5] {
+        let arm = ctx.cell.robots[x].as_arm().is_some();
+        [
+            (set.wait, wait),
+            (set.pause, if arm { arm::pause } else { pause }),
+            (set.slow, slow),
+            (set.detour, if arm { arm::detour } else { detour }),
+            (
+                set.step_aside,
+                if arm { arm::step_aside } else { step_aside },
+            ),
+        ]
+    };
     let t = c.time;
     let sides = [
         Side {
@@ -68,18 +76,12 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
             t,
         },
     ];
-    // With an arm in the pair, the remedies that only change time: pause, detour and step
-    // aside plan in the plane, for rigid robots.
-    let arm = [a, b]
-        .iter()
-        .any(|&r| ctx.cell.robots[r].as_arm().is_some());
-    let in_time: [bool; 5] = [true, false, true, false, false];
     let jobs: Vec<(&Side, Job)> = sides
         .iter()
         .flat_map(|side| {
-            (kinds.iter().zip(in_time))
-                .filter(move |(k, timed)| k.0 && (timed | !arm))
-                .map(move |(k, _)| (side, k.1))
+            (kinds(side.x).into_iter())
+                .filter(|k| k.0)
+                .map(move |k| (side, k.1))
         })
         .collect();
     jobs.par_iter()

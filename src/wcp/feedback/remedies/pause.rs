@@ -2,8 +2,8 @@
 //! whole leg run slower (time scaling keeps every limit).
 
 use super::context::{
-    child, earliest, horizons, least_clearing, leg_nodes, leg_window, pieces_of, Child, Ctx, Side,
-    View,
+    body_radius, child, earliest, horizons, least_clearing, leg_nodes, leg_window, pieces_of,
+    Child, Ctx, Side, View,
 };
 use crate::geometry::Vec2;
 use crate::planning::Primitive;
@@ -19,7 +19,7 @@ const PAUSE_BACKOFF: [f64; 3] = [1.0, 2.0, 4.0];
 const MAX_SLOW: f64 = 8.0;
 
 /// The piece of leg `m` under way in segment `sx`, counting the leg's wait as no piece.
-fn piece_index(view: &View, x: usize, m: usize, sx: &Segment) -> Option<usize> {
+pub(super) fn piece_index(view: &View, x: usize, m: usize, sx: &Segment) -> Option<usize> {
     let s = &view.robots[x];
     let k = s
         .segments
@@ -83,7 +83,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     };
     let here = view.robots[side.x].pose_at(t).pos;
     let at = arc_length_at(&motion.path, here);
-    let reach = ctx.cell.rigid(side.x).shape.radius() + ctx.cell.rigid(side.y).shape.radius();
+    let reach = ctx.cell.rigid(side.x).shape.radius() + body_radius(ctx.cell, side.y);
     let old = leg(view.legs, side.x, m).clone();
     let t0 = leg_window(&view.robots[side.x], m).0;
     let horizons = horizons(view, side.y, &side.sy, t0);

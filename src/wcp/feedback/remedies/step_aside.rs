@@ -2,7 +2,8 @@
 //! on rings about where it stands), waits there and goes on.
 
 use super::context::{
-    child, earliest, horizons, least_clearing, leg_nodes, leg_window, Child, Ctx, Side, View,
+    apart, body_radius, child, earliest, horizons, least_clearing, leg_nodes, leg_window,
+    occupancy, Child, Ctx, Side, View,
 };
 use crate::collision::Body;
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
@@ -18,7 +19,8 @@ const PARK_DIRECTIONS: usize = 12;
 /// Parking poses examined in full (planned, timed, checked) per remedy, nearest first.
 const PARK_TRIES: usize = 3;
 
-/// discs robot `y` sweeps over `[t0, t1]`.
+/// Poses on rings about `q` where robot `x` is clear of the fixtures and of where robot `y`
+/// passes over `[t0, t1]`: the discs a rigid `y` sweeps, the region an arm sweeps.
 fn parking_poses(
     ctx: &Ctx,
     view: &View,
@@ -28,8 +30,13 @@ fn parking_poses(
     (t0, t1): (f64, f64),
 ) -> Vec<Pose> {
     let cell = ctx.cell;
-    let (rx, ry) = (cell.rigid(x).shape.radius(), cell.rigid(y).shape.radius());
+    let rx = cell.rigid(x).shape.radius();
+    let ry = body_radius(cell, y);
     let ys = &view.robots[y];
+    // An arm's links sweep far from its tool: the region itself.
+    let swept = cell.robots[y]
+        .as_arm()
+        .map(|_| occupancy(ctx, view, y, t0, t1));
     let passes: Vec<Vec2> = ys
         .samples
         .iter()
@@ -66,9 +73,10 @@ fn parking_poses(
                 pos: q.pos + ring * rx * Vec2::new(c, s),
                 theta: q.theta,
             };
-            let away = passes
-                .iter()
-                .all(|g| (g - p.pos).norm() > rx + ry + 2.0 * cell.delta);
+            let away = match &swept {
+                Some(region) => apart(&[(cell.rigid(x).pieces(), p)], region, 2.0 * cell.delta),
+                None => (passes.iter()).all(|g| (g - p.pos).norm() > rx + ry + 2.0 * cell.delta),
+            };
             if away && clear_of_fixtures(p) {
                 out.push(p);
             }
@@ -77,22 +85,28 @@ fn parking_poses(
     out
 }
 
+/// The leg of `side.x` that a step aside changes, if it can step aside where it is.
+pub(super) fn aside_leg(view: &View, side: &Side) -> Option<usize> {
+    let route = &view.routes[side.x];
+    match side.sx.activity {
+        // Waiting at the leg's start node, or already on the way: it leaves that node for
+        // the parking pose instead, and lets the other pass.
+        Activity::Wait(_) | Activity::Move { .. } => side.sx.leg,
+        // Home for good: a robot without tasks makes an excursion from home to home; one
+        // with tasks goes home from its last task by way of the parking pose.
+        Activity::Done if route.is_empty() => Some(0),
+        Activity::Done => Some(route.len()),
+        _ => None,
+    }
+}
+
 /// A robot standing in the other's way goes to a parking pose nearby, waits there, and goes
 /// on to where its leg leads (or back home).
 pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let t = side.t;
     let x = side.x;
     let route = &view.routes[x];
-    let m = match side.sx.activity {
-        // Waiting at the leg's start node, or already on the way: it leaves that node for
-        // the parking pose instead, and lets the other pass.
-        Activity::Wait(_) | Activity::Move { .. } => side.sx.leg?,
-        // Home for good: a robot without tasks makes an excursion from home to home; one
-        // with tasks goes home from its last task by way of the parking pose.
-        Activity::Done if route.is_empty() => 0,
-        Activity::Done => route.len(),
-        _ => return None,
-    };
+    let m = aside_leg(view, side)?;
     let (from, to) = leg_nodes(view, x, m);
     let xs = &view.robots[x];
     let q = match side.sx.activity {
