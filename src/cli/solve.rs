@@ -60,8 +60,8 @@ pub struct FeedbackArgs {
     #[arg(long, default_value_t = 0)]
     search_patience: u64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
-    /// detour, step-aside (default: all).
-    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside"])]
+    /// detour, step-aside, reconfigure (an arm's; default: all but reconfigure).
+    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "reconfigure"])]
     remedies: Option<Vec<String>>,
 }
 
@@ -107,8 +107,11 @@ struct Lines {
     stage: Mutex<String>,
     planned: AtomicUsize,
     to_plan: AtomicUsize,
-    /// Best makespan heard, as f64 bits (infinity: none yet).
+    /// Best makespan the sequencer found, as f64 bits (infinity: none yet).
     best: AtomicU64,
+    /// Best makespan of a schedule checked collision-free, as f64 bits (infinity: none
+    /// yet).
+    certified: AtomicU64,
     done: AtomicBool,
 }
 
@@ -125,13 +128,18 @@ impl Lines {
             stage
         };
         let best = f64::from_bits(self.best.load(Ordering::Relaxed));
-        let best = if best.is_finite() {
-            format!("{best:.3}")
+        let certified = f64::from_bits(self.certified.load(Ordering::Relaxed));
+        // Once a schedule is collision-free, that is the best there is; before, the
+        // sequencer's plans on the times it knows (unchecked).
+        let best = if certified.is_finite() {
+            format!("best makespan {certified:.3}, collision-free")
+        } else if best.is_finite() {
+            format!("best makespan {best:.3}, not checked")
         } else {
-            "-".to_owned()
+            "best makespan -".to_owned()
         };
         format!(
-            "progress: {:.1} s, {stage}, best makespan {best}",
+            "progress: {:.1} s, {stage}, {best}",
             self.start.elapsed().as_secs_f64()
         )
     }
@@ -150,6 +158,7 @@ impl Bar {
                 planned: AtomicUsize::new(0),
                 to_plan: AtomicUsize::new(0),
                 best: AtomicU64::new(f64::INFINITY.to_bits()),
+                certified: AtomicU64::new(f64::INFINITY.to_bits()),
                 done: AtomicBool::new(false),
             })
         });
@@ -236,6 +245,11 @@ impl Progress for Bar {
         } else {
             "collision-free"
         };
+        if let (Some(lines), None) = (&self.lines, collision) {
+            lines
+                .certified
+                .fetch_min(makespan.to_bits(), Ordering::Relaxed);
+        }
         self.bar
             .set_message(format!("{k}: makespan {makespan:.3}, {verdict}"));
         self.bar.tick();

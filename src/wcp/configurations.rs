@@ -138,6 +138,11 @@ impl Assignment {
         &self.configurations
     }
 
+    /// `[robot][task]`: the configuration taken, as [`Assignment::index`] gives it.
+    pub(crate) fn chosen(&self) -> &[Vec<usize>] {
+        &self.chosen
+    }
+
     /// The index of arm `r`'s configuration at task `t`.
     ///
     /// ```

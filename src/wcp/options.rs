@@ -115,7 +115,7 @@ impl Default for SearchOptions {
         SearchOptions {
             max_nodes: 5000,
             time_limit: Duration::from_secs(60),
-            remedies: Remedies::ALL,
+            remedies: Remedies::default(),
             patience: None,
         }
     }
@@ -136,6 +136,10 @@ pub struct Remedies {
     pub detour: bool,
     /// Step aside to a parking pose.
     pub step_aside: bool,
+    /// An arm takes another of its configurations at the task of a collision (off by
+    /// default: up to six more children per collision with an arm widen the search more
+    /// than they pay; see the README).
+    pub reconfigure: bool,
 }
 
 impl Remedies {
@@ -147,16 +151,18 @@ impl Remedies {
         slow: true,
         detour: true,
         step_aside: true,
+        reconfigure: true,
     };
 
     /// The names of `--remedies`, in this order.
-    pub const NAMES: [&'static str; 6] = [
+    pub const NAMES: [&'static str; 7] = [
         "resequence",
         "wait",
         "pause",
         "slow",
         "detour",
         "step-aside",
+        "reconfigure",
     ];
 
     /// The set of the names given (each one of [`Remedies::NAMES`]).
@@ -177,6 +183,7 @@ impl Remedies {
             slow: false,
             detour: false,
             step_aside: false,
+            reconfigure: false,
         };
         for name in names {
             let flag = match name {
@@ -186,6 +193,7 @@ impl Remedies {
                 "slow" => &mut set.slow,
                 "detour" => &mut set.detour,
                 "step-aside" => &mut set.step_aside,
+                "reconfigure" => &mut set.reconfigure,
                 other => {
                     return Err(format!(
                         "unknown remedy `{other}`: expected some of {}",
@@ -200,7 +208,11 @@ impl Remedies {
 }
 
 impl Default for Remedies {
+    /// Every remedy but `reconfigure`.
     fn default() -> Self {
-        Remedies::ALL
+        Remedies {
+            reconfigure: false,
+            ..Remedies::ALL
+        }
     }
 }

@@ -22,6 +22,19 @@ pub enum ChangeJson {
     Detour(DetourJson),
     /// A way by a parking pose.
     StepAside(StepAsideJson),
+    /// An arm in another configuration at a task.
+    Reconfigure(ReconfigureJson),
+}
+
+/// An arm in another configuration at a task.
+#[derive(Serialize)]
+pub struct ReconfigureJson {
+    /// The arm.
+    pub robot: String,
+    /// The task.
+    pub at: String,
+    /// Its joint angles there.
+    pub joints: Vec<f64>,
 }
 
 /// A wait at a node.
@@ -100,6 +113,7 @@ pub fn remedy_name(r: &Remedy) -> &'static str {
         RemedyKind::Slow { .. } => "slow",
         RemedyKind::Detour { .. } => "detour",
         RemedyKind::StepAside { .. } => "step-aside",
+        RemedyKind::Reconfigure { .. } => "reconfigure",
     }
 }
 
@@ -154,6 +168,11 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             park: [park.pos.x, park.pos.y, park.theta],
             duration: *duration,
         }),
+        RemedyKind::Reconfigure { task, joints } => ChangeJson::Reconfigure(ReconfigureJson {
+            robot,
+            at: cell.tasks[*task].name.clone(),
+            joints: joints.clone(),
+        }),
     })
 }
 
@@ -190,6 +209,14 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
             "{who} steps aside to ({:.3}, {:.3}) for {duration:.3} on its {on}",
             park.pos.x, park.pos.y
         ),
+        RemedyKind::Reconfigure { task, joints } => {
+            let angles: Vec<String> = joints.iter().map(|a| format!("{a:.3}")).collect();
+            let task = &cell.tasks[*task].name;
+            format!(
+                "{who} takes the configuration [{}] at {task}",
+                angles.join(", ")
+            )
+        }
     }
 }
 

@@ -383,3 +383,68 @@ fn arms_detour_and_step_aside_in_joint_space() {
     assert_eq!(replayed["makespan"], solved["makespan"]);
     assert_eq!(replayed["collision_free"], true);
 }
+
+/// Issue 22, item 4: with `reconfigure`, the search may switch an arm's configuration at the
+/// task of a collision; the result records the new one (in `configurations` and in the
+/// round), and `evaluate` replays it to the same makespan. Without it, that configuration
+/// is not the one taken there.
+#[cfg(feature = "cli")]
+#[test]
+fn the_search_may_switch_an_arms_configuration() {
+    use crate::common::{temp_dir_made, workcell};
+    use serde_json::Value;
+    use workcell::generate::{generate_scara_cell, ScaraRequest};
+    let dir = temp_dir_made("arm-solve", "reconfigure");
+    let doc = generate_scara_cell(&ScaraRequest { arms: 6, tasks: 24 }, 2, 0).unwrap();
+    let cell = dir.join("scara-6x24-2-0.json");
+    std::fs::write(&cell, doc.to_string()).unwrap();
+    let cell = cell.to_str().unwrap();
+    let all = "resequence,wait,pause,slow,detour,step-aside,reconfigure";
+    let run = |remedies: &str| -> Value {
+        let o = workcell(&[
+            "solve",
+            cell,
+            "--json",
+            "--search-nodes",
+            "200",
+            "--remedies",
+            remedies,
+        ]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let solved = run(all);
+    let round = (solved["feedback"].as_array().unwrap().iter())
+        .find(|r| r["remedy"] == "reconfigure")
+        .expect("a reconfiguration on the answer's branch");
+    let change = &round["reconfigure"];
+    let (arm, task) = (
+        change["robot"].as_str().unwrap(),
+        change["at"].as_str().unwrap(),
+    );
+    // Where the arm does that task, the result gives the new configuration.
+    let taken = |s: &Value| -> Value {
+        let k = (s["sequences"][arm].as_array().unwrap().iter())
+            .position(|t| t == task)
+            .expect("the arm does the task");
+        s["configurations"][arm][k].clone()
+    };
+    assert_eq!(taken(&solved), change["joints"]);
+    let result = dir.join("result.json");
+    std::fs::write(&result, solved.to_string()).unwrap();
+    let o = workcell(&["evaluate", cell, result.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0));
+    let replayed: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(replayed["makespan"], solved["makespan"]);
+    assert_eq!(replayed["collision_free"], true);
+    // By default the search keeps the configurations chosen with the routes.
+    let default = run("resequence,wait,pause,slow,detour,step-aside");
+    let used =
+        (default["feedback"].as_array().unwrap().iter()).any(|r| r["remedy"] == "reconfigure");
+    assert!(!used);
+}

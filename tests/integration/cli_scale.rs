@@ -141,3 +141,25 @@ fn time_limit_progress_and_exported_graph() {
         .iter()
         .all(|a| a["exact"] == true));
 }
+
+/// Once a schedule is collision-free, `--progress` reports the best such makespan (the
+/// answer's, at the end), not the sequencer's unchecked plans.
+#[test]
+fn progress_reports_the_best_collision_free_makespan() {
+    let cell = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    let out = workcell(&["solve", "--json", "--progress", cell]);
+    assert_eq!(out.status.code(), Some(0));
+    let result: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let makespan = result["makespan"].as_f64().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let last = stderr
+        .lines()
+        .rfind(|l| l.starts_with("progress: "))
+        .unwrap();
+    assert!(
+        last.ends_with(&format!("best makespan {makespan:.3}, collision-free")),
+        "{stderr}"
+    );
+    // The blind plan (shorter, colliding) is not reported as the best any more.
+    assert!(result["blind_makespan"].as_f64().unwrap() < makespan);
+}

@@ -7,8 +7,10 @@
 //! looks back (see `greedy.rs`), kept to compare against.
 
 mod clearing;
+mod fingerprint;
 mod greedy;
 mod outcome;
+mod reconfigure;
 mod remedies;
 mod search;
 

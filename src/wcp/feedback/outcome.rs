@@ -62,6 +62,14 @@ pub enum RemedyKind {
         /// The new path of G.
         path: Vec<Vec2>,
     },
+    /// An arm takes another of its configurations at a task (the legs into and out of it
+    /// as planned for it).
+    Reconfigure {
+        /// The task.
+        task: usize,
+        /// The arm's joint angles there.
+        joints: Vec<f64>,
+    },
     /// The robot steps aside to a parking pose, waits there and goes on.
     StepAside {
         /// The parking pose.

@@ -7,7 +7,9 @@
 //! each remedy of `remedies/` (each the least of its kind that clears the pair), or the
 //! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
 //! child is costed lazily: it waits in the queue, and the sequencer runs only when it comes
-//! out.
+//! out. So is a reconfiguration (when asked): an arm of the pair in another configuration
+//! at a task (`reconfigure.rs`); the node then carries the preparation of its
+//! configurations, which its own children inherit.
 //!
 //! The order is that of limited discrepancy search (Harvey & Ginsberg, 1995), with the
 //! makespan as the heuristic: a node's children are ranked by makespan (then by how late
@@ -27,11 +29,13 @@
 //! that reaches it may differ from run to run). Without any certified schedule, the search
 //! reports the schedule whose first collision came latest, and that collision.
 
+use super::fingerprint::fingerprint;
 use super::outcome::{build, Iteration, Remedy, Solved};
+use super::reconfigure::{self, reconfigurations, reconfigured, Reconfig};
 use super::remedies::{candidates, Ctx, View};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckReport};
-use crate::wcp::legs::{default_legs, HoldReason, Legs, Piece};
+use crate::wcp::legs::{default_legs, Legs};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
@@ -40,7 +44,6 @@ use crate::wcp::sequencer::{self, Conflict};
 use rayon::prelude::*;
 use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, HashSet};
-use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -61,10 +64,21 @@ struct Node {
     discrepancies: usize,
     /// Depth of the last of them (0 for none).
     deviated_at: usize,
-    /// A re-sequencing of the parent with this conflict added, not yet run.
-    pending: Option<Conflict>,
+    /// What the node stands for, not made yet: a re-sequencing or a reconfiguration.
+    pending: Option<Pending>,
     /// The checker's verdict, once checked.
     outcome: Option<Outcome>,
+    /// The preparation whose arm configurations the node takes, when an arm was
+    /// reconfigured on the way from the root (else the search's).
+    prepared: Option<Arc<Prepared>>,
+}
+
+/// A child made only when the search takes it.
+enum Pending {
+    /// The parent re-sequenced with this conflict added.
+    Resequence(Conflict),
+    /// The parent with an arm reconfigured.
+    Reconfigure(Reconfig),
 }
 
 /// The checker's verdict on a node.
@@ -122,7 +136,6 @@ struct Search<'a> {
     cell: &'a Cell,
     prepared: &'a Prepared,
     opts: &'a SolveOptions,
-    ctx: Ctx<'a>,
     nodes: Vec<Node>,
     queue: BinaryHeap<Reverse<Key>>,
     seen: HashSet<u128>,
@@ -154,7 +167,6 @@ pub(super) fn solve(
         cell,
         prepared,
         opts,
-        ctx: Ctx::new(cell, moves, opts),
         nodes: Vec::new(),
         queue: BinaryHeap::new(),
         seen: HashSet::new(),
@@ -166,7 +178,9 @@ pub(super) fn solve(
         furthest: None,
     };
     let legs = default_legs(cell.robots.len());
-    search.seen.insert(fingerprint(&blind.sequences, &legs));
+    search
+        .seen
+        .insert(fingerprint(&blind.sequences, &legs, moves.assignment()));
     let root = build(cell, &blind.sequences, &legs, moves)?;
     let root = search.add(Node {
         routes: Arc::new(blind.sequences.clone()),
@@ -181,6 +195,7 @@ pub(super) fn solve(
         deviated_at: 0,
         pending: None,
         outcome: None,
+        prepared: None,
     });
     search.check_all(&[root], progress);
     if search.collision(root).is_some() {
@@ -196,10 +211,17 @@ pub(super) fn solve(
         if !search.worth(id) {
             continue;
         }
-        if search.nodes[id].pending.is_some() {
+        match search.nodes[id].pending.take() {
             // Costed and checked now; queued again to be expanded if it collides.
-            search.cost_resequencing(id, progress)?;
-            continue;
+            Some(Pending::Resequence(conflict)) => {
+                search.cost_resequencing(id, conflict, progress)?;
+                continue;
+            }
+            Some(Pending::Reconfigure(r)) => {
+                search.cost_reconfiguration(id, r, progress);
+                continue;
+            }
+            None => {}
         }
         if search.nodes[id].depth + 1 < opts.max_iterations {
             search.expand(id, progress);
@@ -267,6 +289,11 @@ impl Search<'_> {
             super::describe(self.cell, c)
         );
         (id, Some(failure))
+    }
+
+    /// The preparation node `id` works with.
+    fn prepared_of(&self, id: usize) -> &Prepared {
+        self.nodes[id].prepared.as_deref().unwrap_or(self.prepared)
     }
 
     fn add(&mut self, node: Node) -> usize {
@@ -369,14 +396,18 @@ impl Search<'_> {
 
     /// Runs the re-sequencing that node `id` stands for and checks it, unless the sequencer
     /// cannot avoid every conflict or the schedule is one seen before.
-    fn cost_resequencing(&mut self, id: usize, progress: &dyn Progress) -> Result<(), InputError> {
-        let conflict = self.nodes[id].pending.take().expect("pending");
+    fn cost_resequencing(
+        &mut self,
+        id: usize,
+        conflict: Conflict,
+        progress: &dyn Progress,
+    ) -> Result<(), InputError> {
         let mut conflicts = (*self.nodes[id].conflicts).clone();
         conflicts.push(conflict);
         let clock = Instant::now();
         let solution = sequence_with(
             self.cell,
-            self.prepared,
+            self.prepared_of(id),
             &conflicts,
             &self.resequencer(&conflict, &self.nodes[id].routes),
             Some(&self.nodes[id].routes),
@@ -391,11 +422,14 @@ impl Search<'_> {
                 legs[r] = self.nodes[id].legs[r].clone();
             }
         }
-        if solution.violations > 0 || !self.seen.insert(fingerprint(&solution.sequences, &legs)) {
+        let assignment = self.prepared_of(id).moves.assignment();
+        let print = fingerprint(&solution.sequences, &legs, assignment);
+        if solution.violations > 0 || !self.seen.insert(print) {
             return Ok(());
         }
         let clock = Instant::now();
-        let schedule = build(self.cell, &solution.sequences, &legs, self.ctx.moves)?;
+        let moves = &self.prepared_of(id).moves;
+        let schedule = build(self.cell, &solution.sequences, &legs, moves)?;
         self.times.scheduling += clock.elapsed();
         let node = &mut self.nodes[id];
         node.routes = Arc::new(solution.sequences);
@@ -412,6 +446,38 @@ impl Search<'_> {
         Ok(())
     }
 
+    /// Makes the reconfiguration that node `id` stands for and checks it, unless a move
+    /// cannot be planned or the schedule is one seen before.
+    fn cost_reconfiguration(&mut self, id: usize, r: Reconfig, progress: &dyn Progress) {
+        let clock = Instant::now();
+        let node = &self.nodes[id];
+        let view = View {
+            routes: &node.routes,
+            legs: &node.legs,
+            robots: &node.robots,
+        };
+        let made = reconfigured(self.cell, self.prepared_of(id), &view, r);
+        self.times.scheduling += clock.elapsed();
+        let Some((child, prepared)) = made else {
+            return;
+        };
+        let print = fingerprint(&node.routes, &child.legs, prepared.moves.assignment());
+        if !self.seen.insert(print) {
+            return;
+        }
+        let node = &mut self.nodes[id];
+        node.legs = child.legs;
+        node.robots[child.robot] = child.schedule;
+        node.makespan = node.robots.iter().map(|s| s.end).fold(0.0, f64::max);
+        node.prepared = Some(prepared);
+        if self.worth(id) {
+            self.check_all(&[id], progress);
+            if self.collision(id).is_some() {
+                self.enqueue(id);
+            }
+        }
+    }
+
     /// Makes, checks and queues the children of colliding node `id`.
     fn expand(&mut self, id: usize, progress: &dyn Progress) {
         let clock = Instant::now();
@@ -426,8 +492,19 @@ impl Search<'_> {
             legs: &node.legs,
             robots: &node.robots,
         };
-        let children = candidates(&self.ctx, &view, &c);
+        let own = node.prepared.clone();
+        let prepared = self.prepared_of(id);
+        let ctx = Ctx::new(self.cell, &prepared.moves, self.opts);
+        let children = candidates(&ctx, &view, &c);
+        let reconfigs: Vec<(Reconfig, Remedy)> = match self.opts.search.remedies.reconfigure {
+            true => reconfigurations(self.cell, (self.prepared, prepared), &node.routes, &c)
+                .into_iter()
+                .map(|r| (r, reconfigure::remedy(&node.routes, prepared, r)))
+                .collect(),
+            false => Vec::new(),
+        };
         self.times.scheduling += clock.elapsed();
+        let node = &self.nodes[id];
         let (routes, conflicts, robots, depth) = (
             node.routes.clone(),
             node.conflicts.clone(),
@@ -437,9 +514,15 @@ impl Search<'_> {
         // No re-sequencing is expected to beat the collision-blind plan.
         let blind_makespan = self.blind_makespan;
         let (discrepancies, deviated_at) = (node.discrepancies, node.deviated_at);
+        let parent_makespan = node.makespan;
+        let legs = node.legs.clone();
         let mut made = Vec::new();
         for child in children {
-            if !self.seen.insert(fingerprint(&routes, &child.legs)) {
+            let assignment = self.prepared_of(id).moves.assignment();
+            if !self
+                .seen
+                .insert(fingerprint(&routes, &child.legs, assignment))
+            {
                 continue;
             }
             let mut timed = robots.clone();
@@ -458,6 +541,7 @@ impl Search<'_> {
                 deviated_at,
                 pending: None,
                 outcome: None,
+                prepared: own.clone(),
             });
             if self.worth(child) {
                 made.push(child);
@@ -465,6 +549,26 @@ impl Search<'_> {
         }
         self.check_all(&made, progress);
         self.rank_and_queue(made, depth);
+        // A reconfiguration departs from the configurations chosen with the routes: a
+        // discrepancy, as a re-sequencing is, made and checked when it is taken.
+        for (r, remedy) in reconfigs {
+            let pending = self.add(Node {
+                routes: routes.clone(),
+                conflicts: conflicts.clone(),
+                legs: legs.clone(),
+                robots: robots.clone(),
+                makespan: parent_makespan,
+                parent: Some(id),
+                remedy: Some(remedy),
+                depth,
+                discrepancies: discrepancies + 1,
+                deviated_at: depth,
+                pending: Some(Pending::Reconfigure(r)),
+                outcome: None,
+                prepared: own.clone(),
+            });
+            self.enqueue(pending);
+        }
         if self.opts.search.remedies.resequence {
             let parent = Node {
                 routes,
@@ -479,6 +583,7 @@ impl Search<'_> {
                 deviated_at: depth,
                 pending: None,
                 outcome: None,
+                prepared: own,
             };
             self.queue_resequencing(parent, &c);
         }
@@ -518,7 +623,7 @@ impl Search<'_> {
             b: (b, sb.activity.step()),
         };
         let pending = self.add(Node {
-            pending: Some(conflict),
+            pending: Some(Pending::Resequence(conflict)),
             ..node
         });
         self.enqueue(pending);
@@ -555,52 +660,9 @@ impl Search<'_> {
             blind_makespan: blind.makespan,
             blind_optimal: blind.optimal,
             failure,
-            assignment: self.prepared.moves.assignment().clone(),
+            assignment: self.prepared_of(id).moves.assignment().clone(),
             times: self.times,
             nodes: self.checked,
         }
     }
-}
-
-/// A 128-bit digest of routes and legs: two schedules with the same digest are the same
-/// schedule (up to a collision of the hash, at odds of 2⁻¹²⁸ per pair).
-fn fingerprint(routes: &[Vec<usize>], legs: &Legs) -> u128 {
-    let digest = |salt: u64| {
-        // SipHash with fixed keys: the same on every run.
-        #[allow(deprecated)]
-        let mut h = std::hash::SipHasher::new_with_keys(salt, !salt);
-        routes.hash(&mut h);
-        for list in legs {
-            list.len().hash(&mut h);
-            for leg in list.iter() {
-                leg.wait.to_bits().hash(&mut h);
-                let Some(pieces) = &leg.pieces else {
-                    0u8.hash(&mut h);
-                    continue;
-                };
-                for piece in pieces.iter() {
-                    match piece {
-                        Piece::Go { motion, scale } => {
-                            1u8.hash(&mut h);
-                            scale.to_bits().hash(&mut h);
-                            for p in &motion.primitives {
-                                p.theta.to_bits().hash(&mut h);
-                                p.turn.to_bits().hash(&mut h);
-                                for v in &p.path {
-                                    (v.x.to_bits(), v.y.to_bits()).hash(&mut h);
-                                }
-                            }
-                        }
-                        Piece::Hold { duration, reason } => {
-                            2u8.hash(&mut h);
-                            duration.to_bits().hash(&mut h);
-                            (*reason == HoldReason::Park).hash(&mut h);
-                        }
-                    }
-                }
-            }
-        }
-        h.finish()
-    };
-    (digest(0x5eed) as u128) << 64 | digest(0xfeed) as u128
 }
