@@ -295,20 +295,7 @@ impl RobotSchedule {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn q_at(&self, t: f64) -> Vec<f64> {
-        let s = &self.joints;
-        let k = s.partition_point(|p| p.t <= t);
-        match k {
-            _ if s.is_empty() => Vec::new(),
-            0 => s[0].q.clone(),
-            k if k == s.len() => s[k - 1].q.clone(),
-            k => {
-                let (p, q) = (&s[k - 1], &s[k]);
-                let u = (t - p.t) / (q.t - p.t);
-                (p.q.iter().zip(&q.q))
-                    .map(|(a, b)| a + (b - a) * u)
-                    .collect()
-            }
-        }
+        joints_at(&self.joints, t)
     }
 
     /// The segment under way at time `t`.
@@ -357,6 +344,25 @@ impl RobotSchedule {
                 .skip_while(|g| g.start < seg.end)
                 .find(|g| matches!(g.activity, Activity::Move { .. }))
                 .map_or(f64::INFINITY, |g| g.end),
+        }
+    }
+}
+
+/// The joint angles of `joints` at time `t`, interpolated linearly as the checker does
+/// (held before the first sample and after the last; empty for no samples).
+pub(crate) fn joints_at(joints: &[JointSample], t: f64) -> Vec<f64> {
+    let s = joints;
+    let k = s.partition_point(|p| p.t <= t);
+    match k {
+        _ if s.is_empty() => Vec::new(),
+        0 => s[0].q.clone(),
+        k if k == s.len() => s[k - 1].q.clone(),
+        k => {
+            let (p, q) = (&s[k - 1], &s[k]);
+            let u = (t - p.t) / (q.t - p.t);
+            (p.q.iter().zip(&q.q))
+                .map(|(a, b)| a + (b - a) * u)
+                .collect()
         }
     }
 }

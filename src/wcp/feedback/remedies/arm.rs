@@ -5,21 +5,20 @@
 //! robot by [`least_clearing`] or [`clears`], as the rigid remedies are.
 
 use super::context::{
-    apart, child, earliest, horizons, least_clearing, leg_nodes, leg_window, occupancy, pieces_of,
-    Child, Ctx, Side, View,
+    apart, by_parking, child, detoured, earliest, horizons, least_clearing, leg_nodes, leg_window,
+    occupancy, paused, pieces_of, Child, Ctx, Side, View,
 };
 use super::pause::piece_index;
 use super::step_aside::aside_leg;
 use crate::cell::ArmRobot;
 use crate::collision::Body;
 use crate::geometry::ConvexPolygon;
-use crate::motion::{tool_pose, JointSample};
+use crate::motion::tool_pose;
 use crate::planning::{ArmModel, JointMove, JointPathSettings, PlannedMove};
-use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
+use crate::wcp::legs::{leg, Piece};
 use crate::wcp::remedy_json::rests;
-use crate::wcp::schedule::Activity;
+use crate::wcp::schedule::{joints_at, Activity};
 use std::sync::Arc;
 
 /// Where an arm pauses on its way: at these shares of the time it took from the piece's
@@ -50,22 +49,6 @@ fn settings(ctx: &Ctx) -> JointPathSettings {
         max_samples: REMEDY_SAMPLES,
         samples_per_phase: ctx.opts.planner.samples_per_phase,
         ..JointPathSettings::default()
-    }
-}
-
-/// The joint angles of `joints` at time `t`, interpolated linearly as the checker does.
-fn q_at(joints: &[JointSample], t: f64) -> Vec<f64> {
-    let k = joints.partition_point(|s| s.t <= t);
-    match k {
-        0 => joints[0].q.clone(),
-        k if k == joints.len() => joints[k - 1].q.clone(),
-        k => {
-            let (p, q) = (&joints[k - 1], &joints[k]);
-            let u = (t - p.t) / (q.t - p.t);
-            (p.q.iter().zip(&q.q))
-                .map(|(a, b)| a + (b - a) * u)
-                .collect()
-        }
     }
 }
 
@@ -105,7 +88,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         if at <= apart_in_time {
             return None;
         }
-        let stop = q_at(joints, at);
+        let stop = joints_at(joints, at);
         let before: Vec<Vec<f64>> = (rest_times.iter())
             .filter(|(t, _)| *t < at - apart_in_time)
             .map(|(_, q)| q.to_vec())
@@ -123,30 +106,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             certified(ctx, &model, &before)?,
             certified(ctx, &model, &after)?,
         );
-        let make = |d: f64| {
-            let mut new = pieces.clone();
-            new.splice(
-                k..=k,
-                [
-                    Piece::Go {
-                        motion: first.clone(),
-                        scale,
-                    },
-                    Piece::Hold {
-                        duration: d,
-                        reason: HoldReason::Pause,
-                    },
-                    Piece::Go {
-                        motion: second.clone(),
-                        scale,
-                    },
-                ],
-            );
-            Some(Leg {
-                pieces: Some(new.into()),
-                ..old.clone()
-            })
-        };
+        let make = |d: f64| Some(paused(&old, &pieces, k, (&first, &second, scale), d));
         let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
         let tool = first.samples.last()?.pos;
         Some((s.end, (d, tool, new, s)))
@@ -190,7 +150,6 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let joints = |n| ctx.moves.assignment().joints(ctx.cell, side.x, n);
     let (qa, qb) = (joints(from)?, joints(to)?);
     let current = pieces_of(ctx, view, side.x, m)?;
-    let old = leg(view.legs, side.x, m).clone();
     let tried = windows.into_iter().filter_map(|(w0, w1)| {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
         // Where the other robot covers either end, no way round it.
@@ -205,27 +164,8 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             return None;
         }
         let motion = Arc::new(model.planned(&path.motion));
-        let new = Leg {
-            pieces: Some(
-                vec![Piece::Go {
-                    motion: motion.clone(),
-                    scale: 1.0,
-                }]
-                .into(),
-            ),
-            ..old.clone()
-        };
-        let s = ctx.rebuild(view, side.x, m, &new)?;
-        let window = (t0, side.window_end(&s, m));
-        let ys = &view.robots[side.y];
-        let ok = clears(
-            ctx.cell,
-            (side.x, &s),
-            (side.y, ys),
-            window,
-            &ctx.opts.check,
-        );
-        ok.then_some((s.end, (motion, new, s)))
+        let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?;
+        Some((s.end, (motion, new, s)))
     });
     // On ties the first window tried.
     let (motion, new, s) = earliest(tried)?;
@@ -313,28 +253,8 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         })
         .take(PARK_TRIES)
         .filter_map(|(p, there, back)| {
-            let make = |d: f64| {
-                Some(Leg {
-                    wait: if keep_wait { old.wait } else { 0.0 },
-                    pieces: Some(
-                        vec![
-                            Piece::Go {
-                                motion: there.clone(),
-                                scale: 1.0,
-                            },
-                            Piece::Hold {
-                                duration: d,
-                                reason: HoldReason::Park,
-                            },
-                            Piece::Go {
-                                motion: back.clone(),
-                                scale: 1.0,
-                            },
-                        ]
-                        .into(),
-                    ),
-                })
-            };
+            let wait = if keep_wait { old.wait } else { 0.0 };
+            let make = |d: f64| Some(by_parking(wait, (&there, &back), d));
             let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
             Some((s.end, (p, d, new, s)))
         });

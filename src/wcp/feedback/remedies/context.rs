@@ -4,9 +4,10 @@
 
 use crate::cell::{Cell, RobotKind};
 use crate::geometry::{closest_features, convex_hull, ConvexPolygon, Posed, Vec2, WalkTolerances};
+use crate::planning::PlannedMove;
 use crate::wcp::feedback::clearing::{clears, least};
 use crate::wcp::feedback::Remedy;
-use crate::wcp::legs::{leg, with_leg, Leg, Legs, Piece};
+use crate::wcp::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use crate::wcp::moves::MoveStore;
 use crate::wcp::options::SolveOptions;
 use crate::wcp::schedule::{route_nodes, RobotSchedule, Segment};
@@ -269,6 +270,82 @@ pub(super) fn body_radius(cell: &Cell, r: usize) -> f64 {
             .map(|(_, body)| body.hull().radius())
             .fold(0.0, f64::max),
     }
+}
+
+/// Leg `old` with its piece `k` cut into `first`, a pause of `d`, and `second`, both at
+/// `scale` (a pause's leg).
+pub(super) fn paused(
+    old: &Leg,
+    pieces: &[Piece],
+    k: usize,
+    (first, second, scale): (&Arc<PlannedMove>, &Arc<PlannedMove>, f64),
+    d: f64,
+) -> Leg {
+    let mut new = pieces.to_vec();
+    let go = |motion: &Arc<PlannedMove>| Piece::Go {
+        motion: motion.clone(),
+        scale,
+    };
+    let hold = Piece::Hold {
+        duration: d,
+        reason: HoldReason::Pause,
+    };
+    new.splice(k..=k, [go(first), hold, go(second)]);
+    Leg {
+        pieces: Some(new.into()),
+        ..old.clone()
+    }
+}
+
+/// The leg of a step aside: after `wait`, `there` (to the parking place), `d` parked, and
+/// `back` (on to the leg's end).
+pub(super) fn by_parking(
+    wait: f64,
+    (there, back): (&Arc<PlannedMove>, &Arc<PlannedMove>),
+    d: f64,
+) -> Leg {
+    let go = |motion: &Arc<PlannedMove>| Piece::Go {
+        motion: motion.clone(),
+        scale: 1.0,
+    };
+    let hold = Piece::Hold {
+        duration: d,
+        reason: HoldReason::Park,
+    };
+    Leg {
+        wait,
+        pieces: Some(vec![go(there), hold, go(back)].into()),
+    }
+}
+
+/// Leg `m` of `side.x` as the one motion `motion` (a detour's leg), and the schedule it
+/// makes, when that clears `side.y` from `t0` (the leg's start) to the window's end.
+pub(super) fn detoured(
+    ctx: &Ctx,
+    view: &View,
+    side: &Side,
+    (m, t0): (usize, f64),
+    motion: &Arc<PlannedMove>,
+) -> Option<(Leg, RobotSchedule)> {
+    let go = Piece::Go {
+        motion: motion.clone(),
+        scale: 1.0,
+    };
+    let new = Leg {
+        pieces: Some(vec![go].into()),
+        ..leg(view.legs, side.x, m).clone()
+    };
+    let s = ctx.rebuild(view, side.x, m, &new)?;
+    let window = (t0, side.window_end(&s, m));
+    let ys = &view.robots[side.y];
+    let ok = clears(
+        ctx.cell,
+        (side.x, &s),
+        (side.y, ys),
+        window,
+        &ctx.opts.check,
+    );
+    ok.then_some((new, s))
 }
 
 /// Of the candidates tried, `(end of the changed leg, candidate)`, the one that ends

@@ -2,12 +2,11 @@
 //! or the region it sweeps over the conflict window if it moves.
 
 use super::context::{
-    body_radius, child, earliest, leg_nodes, leg_window, occupancy, pieces_of, Child, Ctx, Side,
-    View,
+    body_radius, child, detoured, earliest, leg_nodes, leg_window, occupancy, pieces_of, Child,
+    Ctx, Side, View,
 };
-use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::{leg, Leg, Piece};
+use crate::wcp::legs::Piece;
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
 
@@ -45,7 +44,6 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         node_pose(ctx.cell, side.x, to),
     );
     let current = pieces_of(ctx, view, side.x, m)?;
-    let old = leg(view.legs, side.x, m).clone();
     let tried = windows.into_iter().filter_map(|(w0, w1)| {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
         let motion = ctx.moves.between(side.x, a, b, &region)?;
@@ -53,27 +51,8 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         {
             return None;
         }
-        let new = Leg {
-            pieces: Some(
-                vec![Piece::Go {
-                    motion: motion.clone(),
-                    scale: 1.0,
-                }]
-                .into(),
-            ),
-            ..old.clone()
-        };
-        let s = ctx.rebuild(view, side.x, m, &new)?;
-        let window = (t0, side.window_end(&s, m));
-        let ys = &view.robots[side.y];
-        clears(
-            ctx.cell,
-            (side.x, &s),
-            (side.y, ys),
-            window,
-            &ctx.opts.check,
-        )
-        .then_some((s.end, (motion, new, s)))
+        let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?;
+        Some((s.end, (motion, new, s)))
     });
     // On ties the first window tried.
     let (motion, new, s) = earliest(tried)?;

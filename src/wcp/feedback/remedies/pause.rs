@@ -2,13 +2,13 @@
 //! whole leg run slower (time scaling keeps every limit).
 
 use super::context::{
-    body_radius, child, earliest, horizons, least_clearing, leg_nodes, leg_window, pieces_of,
-    Child, Ctx, Side, View,
+    body_radius, child, earliest, horizons, least_clearing, leg_nodes, leg_window, paused,
+    pieces_of, Child, Ctx, Side, View,
 };
 use crate::geometry::Vec2;
 use crate::planning::Primitive;
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
+use crate::wcp::legs::{leg, Leg, Piece};
 use crate::wcp::moves::certify;
 use crate::wcp::schedule::{Activity, Segment};
 
@@ -98,30 +98,7 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             certify(ctx.cell, side.x, &half.samples, obstacles).ok()?;
         }
         let stop = first.path.last().copied()?;
-        let make = |d: f64| {
-            let mut new = pieces.clone();
-            new.splice(
-                k..=k,
-                [
-                    Piece::Go {
-                        motion: first.clone(),
-                        scale,
-                    },
-                    Piece::Hold {
-                        duration: d,
-                        reason: HoldReason::Pause,
-                    },
-                    Piece::Go {
-                        motion: second.clone(),
-                        scale,
-                    },
-                ],
-            );
-            Some(Leg {
-                pieces: Some(new.into()),
-                ..old.clone()
-            })
-        };
+        let make = |d: f64| Some(paused(&old, &pieces, k, (&first, &second, scale), d));
         let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
         Some((s.end, (d, stop, new, s)))
     });

@@ -2,14 +2,14 @@
 //! on rings about where it stands), waits there and goes on.
 
 use super::context::{
-    apart, body_radius, child, earliest, horizons, least_clearing, leg_nodes, leg_window,
-    occupancy, Child, Ctx, Side, View,
+    apart, body_radius, by_parking, child, earliest, horizons, least_clearing, leg_nodes,
+    leg_window, occupancy, Child, Ctx, Side, View,
 };
 use crate::collision::Body;
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::{Motion, Pose};
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::{leg, HoldReason, Leg, Piece};
+use crate::wcp::legs::leg;
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
 
@@ -132,28 +132,8 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         })
         .take(PARK_TRIES)
         .filter_map(|(p, there, back)| {
-            let make = |d: f64| {
-                Some(Leg {
-                    wait: if keep_wait { old.wait } else { 0.0 },
-                    pieces: Some(
-                        vec![
-                            Piece::Go {
-                                motion: there.clone(),
-                                scale: 1.0,
-                            },
-                            Piece::Hold {
-                                duration: d,
-                                reason: HoldReason::Park,
-                            },
-                            Piece::Go {
-                                motion: back.clone(),
-                                scale: 1.0,
-                            },
-                        ]
-                        .into(),
-                    ),
-                })
-            };
+            let wait = if keep_wait { old.wait } else { 0.0 };
+            let make = |d: f64| Some(by_parking(wait, (&there, &back), d));
             let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
             Some((s.end, (p, d, new, s)))
         });
