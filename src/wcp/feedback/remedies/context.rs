@@ -403,3 +403,33 @@ impl TestCell {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion::Pose;
+
+    /// `apart` measures the pieces placed against the region, by `margin`: its bounding-disc
+    /// shortcut decides only pairs that are far apart.
+    #[test]
+    fn apart_is_the_distance_beyond_a_margin() {
+        let square = ConvexPolygon::rectangle(1.0, 1.0).unwrap(); // about its centre
+        let region = [
+            ConvexPolygon::new(&[[2.0, -0.5], [3.0, -0.5], [3.0, 0.5], [2.0, 0.5]])
+                .unwrap()
+                .0,
+        ];
+        let at = |x: f64| [(std::slice::from_ref(&square), Pose::new(x, 0.0, 0.0))];
+        // The square's right edge at x + 0.5; the region's left edge at 2.
+        assert!(apart(&at(1.4), &region, 0.05)); // 0.1 apart
+        assert!(!apart(&at(1.4), &region, 0.15)); // within the margin
+        assert!(!apart(&at(1.6), &region, 0.0)); // overlapping
+        assert!(apart(&at(-50.0), &region, 1.0)); // far: the discs decide
+                                                  // A long thin piece whose centre is far but whose end reaches the region.
+        let bar = ConvexPolygon::new(&[[-4.0, -0.1], [4.0, -0.1], [4.0, 0.1], [-4.0, 0.1]])
+            .unwrap()
+            .0;
+        let reach = [(std::slice::from_ref(&bar), Pose::new(-2.0, 0.0, 0.0))];
+        assert!(!apart(&reach, &region, 0.0));
+    }
+}
