@@ -60,10 +60,14 @@ pub fn choose_configurations(
     }
     // From the configurations nearest home, and from the first ones: alternation is a
     // local search, and the two starts end in different optima.
-    let (near, near_makespan) = alternate(cell, prepared, &arms, opts, progress)?;
+    // The two run side by side: each is mostly one sequencer run after another.
     let first = Assignment::first(cell, prepared.moves.assignment().configurations_arc());
     let from_first = prepared.reassigned(cell, first);
-    let (other, other_makespan) = alternate(cell, &from_first, &arms, opts, progress)?;
+    let (near, other) = rayon::join(
+        || alternate(cell, prepared, &arms, opts, progress),
+        || alternate(cell, &from_first, &arms, opts, progress),
+    );
+    let ((near, near_makespan), (other, other_makespan)) = (near?, other?);
     if other_makespan < near_makespan {
         return Ok(Some(other.unwrap_or(from_first)));
     }

@@ -20,6 +20,7 @@ use super::choose::choose_configurations;
 use super::options::{Feedback, SolveOptions};
 use super::prepare::{Prepared, Progress};
 use crate::cell::{Cell, InputError};
+use std::time::Instant;
 
 /// Solves the cell: sequences it collision-blind, then feeds collisions back as
 /// `opts.feedback` says, until the checker certifies a schedule or the limits are reached.
@@ -41,12 +42,16 @@ pub fn solve(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
+    let clock = Instant::now();
     let chosen = choose_configurations(cell, prepared, opts, progress)?;
+    let choosing = clock.elapsed();
     let prepared = chosen.as_ref().unwrap_or(prepared);
     let mut solved = match opts.feedback {
         Feedback::Greedy => greedy::solve(cell, prepared, opts, progress),
         Feedback::Search => search::solve(cell, prepared, opts, progress),
     }?;
+    // Choosing configurations is sequencing, with the moves it plans.
+    solved.times.sequencing += choosing;
     // The sequencer proves routes optimal for the configurations it is given, not the
     // choice of configurations.
     let found = prepared.moves.assignment().configurations();

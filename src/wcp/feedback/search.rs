@@ -43,7 +43,7 @@ use crate::wcp::sequence::sequence_with;
 use crate::wcp::sequencer::{self, Conflict};
 use rayon::prelude::*;
 use std::cmp::{Ordering, Reverse};
-use std::collections::{BinaryHeap, HashSet};
+use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -132,6 +132,13 @@ const LOCAL_RESEQUENCE_MIN_ITERATIONS: usize = 8;
 /// more to be worth checking.
 const SAME_MAKESPAN: f64 = 1e-9;
 
+/// What a re-sequencing asks the sequencer, which answers it deterministically: the routes
+/// it departs from, the conflicts to avoid (sorted), the preparation whose configurations
+/// it plans with (its address: every preparation lives as long as the search, held by the
+/// nodes), and the rounds of local search it is given (see [`Search::resequencer`]). Parents whose routes agree and whose legs differ ask the same
+/// question: a third of the re-sequencings of a 4-arm cell of 40 tasks.
+type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize);
+
 struct Search<'a> {
     cell: &'a Cell,
     prepared: &'a Prepared,
@@ -139,6 +146,8 @@ struct Search<'a> {
     nodes: Vec<Node>,
     queue: BinaryHeap<Reverse<Key>>,
     seen: HashSet<u128>,
+    /// The sequencer's answers by question, for re-sequencings asked again.
+    sequenced: HashMap<Question, sequencer::Solution>,
     times: StageTimes,
     checked: usize,
     /// The collision-blind plan's makespan: what a re-sequencing waits in the queue at.
@@ -170,6 +179,7 @@ pub(super) fn solve(
         nodes: Vec::new(),
         queue: BinaryHeap::new(),
         seen: HashSet::new(),
+        sequenced: HashMap::new(),
         times,
         checked: 0,
         blind_makespan: blind.makespan,
@@ -402,17 +412,32 @@ impl Search<'_> {
         conflict: Conflict,
         progress: &dyn Progress,
     ) -> Result<(), InputError> {
+        // Kept sorted, so that the same set is the same question however it was reached.
         let mut conflicts = (*self.nodes[id].conflicts).clone();
-        conflicts.push(conflict);
+        if let Err(k) = conflicts.binary_search(&conflict) {
+            conflicts.insert(k, conflict);
+        }
         let clock = Instant::now();
-        let solution = sequence_with(
-            self.cell,
-            self.prepared_of(id),
-            &conflicts,
-            &self.resequencer(&conflict, &self.nodes[id].routes),
-            Some(&self.nodes[id].routes),
-            &(),
-        )?;
+        let routes = &self.nodes[id].routes;
+        let asked = self.prepared_of(id) as *const Prepared as usize;
+        let opts = self.resequencer(&conflict, routes);
+        let question = (routes.clone(), conflicts, asked, opts.sequencer.iterations);
+        let solution = match self.sequenced.get(&question) {
+            Some(answer) => answer.clone(),
+            None => {
+                let answer = sequence_with(
+                    self.cell,
+                    self.prepared_of(id),
+                    &question.1,
+                    &opts,
+                    Some(routes),
+                    &(),
+                )?;
+                self.sequenced.insert(question.clone(), answer.clone());
+                answer
+            }
+        };
+        let conflicts = question.1;
         self.times.sequencing += clock.elapsed();
         // Robots whose routes stay keep their legs: their remedies still answer their
         // collisions.

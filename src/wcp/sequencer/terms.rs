@@ -29,7 +29,7 @@ pub const fn node_task(n: usize) -> usize {
 
 /// One thing a robot does on its route, in the node indices of [`Instance`](super::Instance)
 /// (0 = the robot's home, `1 + t` = task `t`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Step {
     /// The robot travels from node `from` to node `to`.
     Move {
@@ -47,7 +47,7 @@ pub enum Step {
 
 /// Feedback from the collision checker: robot `a.0` doing step `a.1` and
 /// robot `b.0` doing step `b.1` may not both be chosen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Conflict {
     /// The first robot and its step.
     pub a: (usize, Step),
