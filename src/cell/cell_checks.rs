@@ -188,7 +188,7 @@ fn check_tasks(cell: &Cell) -> Result<(), InputError> {
     Ok(())
 }
 
-fn too_large(value: f64, delta: f64) -> String {
+pub(super) fn too_large(value: f64, delta: f64) -> String {
     format!(
         "coordinate {value:e} is too large for delta = {delta:e} (limit {:e}): f64 cannot \
          resolve delta there; move the origin or raise delta",
@@ -196,7 +196,7 @@ fn too_large(value: f64, delta: f64) -> String {
     )
 }
 
-fn angle_too_large(theta: f64, radius: f64, delta: f64) -> String {
+pub(super) fn angle_too_large(theta: f64, radius: f64, delta: f64) -> String {
     format!(
         "angle {theta:e} is too large for delta = {delta:e}: f64 resolves it only to {:.1e} \
          rad, {:.1e} at the robot's rim (limit |radius x theta| <= {:e}); reduce it modulo 2 pi",

@@ -12,7 +12,8 @@
 //! `theta` by `turn`), timed by the motion model at the robot's limits and run `scale` (≥ 1)
 //! times slower; each `hold` stands still. `on` is for readers and is not checked.
 
-use super::{Cell, InputError};
+use super::cell_checks::{angle_too_large, too_large};
+use super::{Cell, InputError, MAX_COORDINATE_OVER_DELTA};
 use serde_json::Value;
 use std::path::Path;
 
@@ -135,6 +136,7 @@ pub fn parse_legs(
                 let at = format!("{at}.pieces[{j}]");
                 let p = piece(p, &at, arm).map_err(|(f, r)| fail(f, r))?;
                 check_joints(&p, cell, robot).map_err(|(f, r)| fail(format!("{at}.{f}"), r))?;
+                check_extents(&p, cell, robot).map_err(|(f, r)| fail(format!("{at}.{f}"), r))?;
                 Ok(p)
             })
             .collect::<Result<_, _>>()?;
@@ -248,6 +250,38 @@ fn check_joints(p: &PieceSpec, cell: &Cell, robot: usize) -> Result<(), Failure>
                 let reason = format!("joint {j} at {a}, outside its limits [{lo}, {hi}]");
                 return Err((at, reason));
             }
+        }
+    }
+    Ok(())
+}
+
+/// A motion's coordinates and angles within what f64 resolves at δ, as the cell's own are
+/// (see `cell_checks`): an angle beyond it would be rounded to whole turns and silently
+/// become the robot's.
+fn check_extents(p: &PieceSpec, cell: &Cell, robot: usize) -> Result<(), Failure> {
+    let PieceSpec::Go {
+        primitives, joints, ..
+    } = p
+    else {
+        return Ok(());
+    };
+    let (delta, rim) = (cell.delta, cell.robots[robot].rim());
+    let limit = MAX_COORDINATE_OVER_DELTA * delta;
+    for (i, q) in primitives.iter().enumerate() {
+        let at = format!("go.primitives[{i}]");
+        for (n, &[x, y]) in q.path.iter().enumerate() {
+            let far = x.abs().max(y.abs());
+            if far > limit {
+                return Err((format!("{at}.path[{n}]"), too_large(far, delta)));
+            }
+        }
+        if (rim * q.theta).abs() > limit {
+            return Err((format!("{at}.theta"), angle_too_large(q.theta, rim, delta)));
+        }
+    }
+    for (w, q) in joints.iter().enumerate() {
+        if let Some(&a) = q.iter().find(|a| (rim * **a).abs() > limit) {
+            return Err((format!("go.joints[{w}]"), angle_too_large(a, rim, delta)));
         }
     }
     Ok(())

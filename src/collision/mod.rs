@@ -43,6 +43,6 @@ pub use precision::{
 };
 pub use sampled::MAX_SAMPLED_LOOKS;
 pub(crate) use scene::check_delta;
-pub use scene::{name_fault, Body, Scene};
+pub use scene::{name_fault, Body, Scene, MAX_NAME_CHARS};
 pub use stats::Stats;
 pub use verdict::Verdict;

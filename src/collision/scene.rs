@@ -413,16 +413,31 @@ fn check_name(name: &str, k: usize, taken: impl FnOnce(&str) -> bool) -> Result<
     Ok(())
 }
 
+/// The longest name, in characters: a name is copied into every report, round and
+/// picture, and a search holds thousands of them (a 1 MB name made a conflict cell's search
+/// take 4.8 GB).
+pub const MAX_NAME_CHARS: usize = 256;
+
 /// Why a name cannot be written into every output (a terminal, JSON, an SVG, a page): a
-/// control character, or a noncharacter that XML refuses. `None` for a usable name. The
-/// message does not repeat the name, which may hold an escape sequence.
+/// control character, a noncharacter that XML refuses, or more than [`MAX_NAME_CHARS`]
+/// characters. `None` for a usable name. The message does not repeat the name, which may
+/// hold an escape sequence.
 ///
 /// ```
-/// use workcell::collision::name_fault;
+/// use workcell::collision::{name_fault, MAX_NAME_CHARS};
 /// assert_eq!(name_fault("R1 ⟂ weld"), None);
 /// assert_eq!(name_fault("R\u{1b}[2J").as_deref(), Some("a name may not hold control characters: U+001B at character 2"));
+/// assert!(name_fault(&"R".repeat(MAX_NAME_CHARS)).is_none());
+/// assert!(name_fault(&"R".repeat(MAX_NAME_CHARS + 1)).unwrap().contains("at most 256"));
 /// ```
 pub fn name_fault(name: &str) -> Option<String> {
+    let chars = name.chars().take(MAX_NAME_CHARS + 1).count();
+    if chars > MAX_NAME_CHARS {
+        return Some(format!(
+            "a name may hold at most {MAX_NAME_CHARS} characters (this one has {})",
+            name.chars().count()
+        ));
+    }
     let (k, c) = name
         .chars()
         .enumerate()

@@ -457,6 +457,19 @@ fn names_with_control_characters_are_refused() {
         let square = ConvexPolygon::rectangle(1.0, 1.0).unwrap();
         assert!(library.add(Body::obstacle(bad, &square)).is_err());
     }
+    // A name of a megabyte would be copied into every search node: refused by length.
+    let long = "R".repeat(workcell::collision::MAX_NAME_CHARS + 1);
+    let text = cell(&robot("R1", "[0, 0]"), "", "").replace("\"R1\"", &format!("\"{long}\""));
+    let e = refused(&text);
+    assert_eq!(e.field, "robots[0].name", "{e}");
+    assert!(
+        e.reason
+            .contains("at most 256 characters (this one has 257)"),
+        "{e}"
+    );
+    let longest = "R".repeat(workcell::collision::MAX_NAME_CHARS);
+    let text = cell(&robot("R1", "[0, 0]"), "", "").replace("\"R1\"", &format!("\"{longest}\""));
+    assert_eq!(ok(&text).robots[0].name, longest);
     // Letters of any script, spaces and symbols are names.
     let fine = cell(&robot("R1", "[0, 0]"), "", "").replace("\"R1\"", "\"Schweißroboter 1 ⟂ Ω\"");
     assert_eq!(ok(&fine).robots[0].name, "Schweißroboter 1 ⟂ Ω");

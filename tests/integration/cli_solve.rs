@@ -605,3 +605,136 @@ fn evaluate_names_the_piece_of_a_leg_that_breaks_the_time_axis() {
         assert!(err.contains(says), "{err}");
     }
 }
+
+/// A leg's angle or coordinate beyond what f64 resolves at δ (as the cell's own are) is
+/// refused, naming the result file and the field: at 2π·10¹⁵ an angle is rounded to whole
+/// turns and would silently become the robot's angle.
+#[test]
+fn evaluate_refuses_leg_angles_and_coordinates_f64_cannot_resolve() {
+    let cell = shipped("feedback-cell.json");
+    let result = json(&workcell(&["solve", &cell, "--json"]));
+    let legs = result["legs"].as_array().expect("legs");
+    let (k, i) = (legs.iter().enumerate())
+        .find_map(|(k, l)| {
+            let pieces = l["pieces"].as_array()?;
+            Some((k, pieces.iter().position(|p| p.get("go").is_some())?))
+        })
+        .expect("a leg with a motion");
+    let at = format!("/legs/{k}/pieces/{i}/go/primitives/0");
+    let field = format!("legs[{k}].pieces[{i}].go.primitives[0]");
+    let dir = temp_dir_made("solve", "leg_extents");
+    let turns = std::f64::consts::TAU * 1e15;
+    let cases = [
+        (
+            format!("{at}/theta"),
+            turns,
+            format!("{field}.theta"),
+            "angle",
+        ),
+        (
+            format!("{at}/path/1/0"),
+            1e300,
+            format!("{field}.path[1]"),
+            "coordinate",
+        ),
+    ];
+    for (n, (pointer, value, field, says)) in cases.into_iter().enumerate() {
+        let mut bad = result.clone();
+        *bad.pointer_mut(&pointer).unwrap() = serde_json::json!(value);
+        let file = dir.join(format!("bad-{n}.json"));
+        std::fs::write(&file, bad.to_string()).unwrap();
+        let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{pointer} = {value}");
+        let err = text(&o.stderr);
+        assert!(
+            err.contains(file.to_str().unwrap()) && err.contains(&format!("`{field}`")),
+            "{err}"
+        );
+        assert!(err.contains(says) && err.contains("too large"), "{err}");
+    }
+    // The result as solved is still taken.
+    let file = dir.join("good.json");
+    std::fs::write(&file, result.to_string()).unwrap();
+    let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+}
+
+/// Outputs that are not plain files (issue 26): a symlink is followed (its target replaced,
+/// the link kept); a FIFO nobody reads is refused at once, never waited on (nor opened to
+/// compare it with the inputs); a FIFO with a reader gets the picture; a full character
+/// device is written through and its failure is exit 2, the device kept (root only: the
+/// test makes its own full device with mknod).
+#[cfg(unix)]
+#[test]
+fn outputs_that_are_not_plain_files() {
+    use std::os::unix::fs::FileTypeExt;
+    let cell = shipped("feedback-cell.json");
+    let dir = temp_dir_made("solve", "not_plain_outputs");
+    let (target, link) = (dir.join("target.svg"), dir.join("link.svg"));
+    std::fs::write(&target, "old").unwrap();
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let o = workcell(&["solve", &cell, "--svg", link.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(&target)
+        .unwrap()
+        .starts_with("<svg"));
+
+    let fifo = dir.join("pipe.svg");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    // No reader: refused within the run, not after an endless wait.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_workcell"))
+        .args(["solve", &cell, "--svg", fifo.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            child.kill().unwrap();
+            panic!("solve blocked on a FIFO nobody reads");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    refused_naming(&out, &fifo, &["FIFO", "no process reads"]);
+    assert!(std::fs::symlink_metadata(&fifo)
+        .unwrap()
+        .file_type()
+        .is_fifo());
+    // A reader: it gets the whole picture.
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+    };
+    // The reader counts as one as soon as it waits in open().
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    let o = workcell(&["solve", &cell, "--svg", fifo.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    let got = reader.join().unwrap();
+    assert!(got.starts_with("<svg") && got.trim_end().ends_with("</svg>"));
+    assert!(std::fs::symlink_metadata(&fifo)
+        .unwrap()
+        .file_type()
+        .is_fifo());
+
+    // A full device of our own (1, 7 is /dev/full), where root may make one.
+    let full = dir.join("full");
+    let made = Command::new("mknod")
+        .arg(&full)
+        .args(["c", "1", "7"])
+        .status();
+    if made.is_ok_and(|s| s.success()) {
+        let o = workcell(&["solve", &cell, "--svg", full.to_str().unwrap()]);
+        refused_naming(&o, &full, &["cannot write", "No space left"]);
+        let kind = std::fs::symlink_metadata(&full).unwrap().file_type();
+        assert!(kind.is_char_device(), "the device was replaced");
+    } else {
+        eprintln!("skipped the full device: mknod needs root");
+    }
+}
