@@ -28,6 +28,7 @@ pub(crate) struct View<'a> {
 }
 
 /// A changed schedule: one robot's legs and timed plan replaced.
+#[derive(Clone)]
 pub(crate) struct Child {
     pub legs: Legs,
     pub robot: usize,
