@@ -14,7 +14,7 @@ use std::path::Path;
 
 /// A link of an arm as written: its length and body in its own frame.
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 pub(super) struct RawLink {
     length: f64,
     #[serde(default)]

@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawCell {
     #[serde(default)]
     delta: Option<f64>,
@@ -25,7 +25,7 @@ struct RawCell {
 }
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawRobot {
     name: String,
     #[serde(default)]
@@ -57,7 +57,7 @@ struct RawRobot {
 }
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawObstacle {
     name: String,
     #[serde(default)]
@@ -69,7 +69,7 @@ struct RawObstacle {
 }
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawTask {
     name: String,
     at: Vec<f64>,

@@ -96,6 +96,9 @@ pub fn parse_legs(
         let at = format!("legs[{k}]");
         let name = item.get("robot").and_then(Value::as_str);
         let fail = |field: String, reason: String| InputError::new(file, name, field, reason);
+        if let Some((key, reason)) = unknown_in(item, &["robot", "move", "on", "pieces"]) {
+            return Err(fail(format!("{at}.{key}"), reason));
+        }
         let Some(robot) = name.and_then(|n| cell.robots.iter().position(|r| r.name == n)) else {
             return Err(fail(
                 format!("{at}.robot"),
@@ -162,7 +165,26 @@ fn number(
     }
 }
 
+/// The first key of object `v` it may not hold, with the reason (see `object_only`).
+fn unknown_in(v: &Value, known: &[&str]) -> Option<(String, String)> {
+    let keys = v.as_object()?.keys().map(String::as_str);
+    super::object_only::first_unknown(keys, known)
+}
+
 fn piece(p: &Value, at: &str, arm: bool) -> Result<PieceSpec, Failure> {
+    let known: &[&str] = match p.get("hold") {
+        Some(_) => &["hold", "reason"],
+        None => &["go"],
+    };
+    if let Some((key, reason)) = unknown_in(p, known) {
+        return Err((format!("{at}.{key}"), reason));
+    }
+    if let Some((key, reason)) = p
+        .get("go")
+        .and_then(|go| unknown_in(go, &["primitives", "joints", "scale"]))
+    {
+        return Err((format!("{at}.go.{key}"), reason));
+    }
     if let Some(d) = p.get("hold") {
         let duration = number(
             Some(d),
@@ -289,6 +311,9 @@ fn check_extents(p: &PieceSpec, cell: &Cell, robot: usize) -> Result<(), Failure
 
 /// A primitive of a motion: `path` (at least two finite points), `theta`, `turn` (at most π).
 fn primitive(q: &Value, at: &str) -> Result<PrimitiveSpec, Failure> {
+    if let Some((key, reason)) = unknown_in(q, &["path", "theta", "turn"]) {
+        return Err((format!("{at}.{key}"), reason));
+    }
     let Some(Value::Array(points)) = q.get("path") else {
         return Err((
             format!("{at}.path"),

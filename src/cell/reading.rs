@@ -103,7 +103,14 @@ fn refusal<T: serde::de::DeserializeOwned>(
             path => path,
         };
         let body = body_named_by(text, &field);
-        InputError::new(file, body.as_deref(), field, e.inner())
+        let said = e.inner().to_string();
+        // An unknown key is named by its own path (`tasks[3].robot`).
+        let (field, reason) = match super::object_only::unknown_key(&said) {
+            Some((key, reason)) if field.is_empty() => (key, reason),
+            Some((key, reason)) => (format!("{field}.{key}"), reason),
+            None => (field, said),
+        };
+        InputError::new(file, body.as_deref(), field, reason)
     })?;
     de.end().map_err(|e| {
         let reason = format!("unexpected data after the {what} document: {e}");

@@ -13,7 +13,7 @@ use std::collections::HashSet;
 use std::path::Path;
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawScene {
     #[serde(default)]
     delta: Option<f64>,
@@ -23,7 +23,7 @@ struct RawScene {
 }
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawRobot {
     name: String,
     #[serde(default)]
@@ -42,7 +42,7 @@ struct RawRobot {
 }
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawSample {
     t: f64,
     #[serde(default)]
@@ -158,7 +158,7 @@ impl<'de> Deserialize<'de> for Samples {
 }
 
 #[derive(Deserialize)]
-#[serde(remote = "Self")]
+#[serde(remote = "Self", deny_unknown_fields)]
 struct RawObstacle {
     name: String,
     #[serde(default)]
@@ -370,8 +370,9 @@ fn arm(
 }
 
 /// The scene document read in one pass by [`Cursor`], into the records serde would make of
-/// it: unknown keys skipped, a key given twice or anything the cursor leaves to serde
-/// (`None`) read again by serde.
+/// it: comments (keys beginning with `_`) skipped; an unknown key, a key given twice or
+/// anything the cursor leaves to serde (`None`) read again by serde, which refuses or
+/// reads it.
 mod fast {
     use super::{RawObstacle, RawRobot, RawSample, RawScene, Samples};
     use crate::cell::json_cursor::{once, Cursor};
@@ -385,7 +386,7 @@ mod fast {
             "delta" => once(&mut delta, c.number()),
             "robots" => once(&mut robots, list(c, robot)),
             "obstacles" => once(&mut obstacles, list(c, obstacle)),
-            _ => c.skip(),
+            _ => comment(c, key),
         })?;
         c.end()?;
         Some(RawScene {
@@ -393,6 +394,14 @@ mod fast {
             robots: robots?,
             obstacles: obstacles.unwrap_or_default(),
         })
+    }
+
+    /// Skips a comment's value; any other unknown key is left to serde (`None`).
+    fn comment(c: &mut Cursor, key: &str) -> Option<()> {
+        match key.starts_with('_') {
+            true => c.skip(),
+            false => None,
+        }
     }
 
     fn list<'a, T>(c: &mut Cursor<'a>, item: fn(&mut Cursor<'a>) -> Option<T>) -> Option<Vec<T>> {
@@ -417,7 +426,7 @@ mod fast {
             "trajectory" => once(&mut trajectory, list(c, sample).map(Samples::Rigid)),
             // Arms are read by serde.
             "base" | "links" => None,
-            _ => c.skip(),
+            _ => comment(c, key),
         })?;
         Some(RawRobot {
             name: name?,
@@ -438,7 +447,7 @@ mod fast {
             "shape" => once(&mut shape, list(c, vertex)),
             "parts" => once(&mut parts, list(c, polygon)),
             "outline" => once(&mut outline, list(c, vertex)),
-            _ => c.skip(),
+            _ => comment(c, key),
         })?;
         Some(RawObstacle {
             name: name?,
@@ -474,7 +483,7 @@ mod fast {
                 "omega" => &mut omega,
                 // An arm's sample: read by serde.
                 "q" | "qd" => return None,
-                _ => return c.skip(),
+                _ => return comment(c, key),
             };
             once(slot, c.number())
         })?;
@@ -537,11 +546,13 @@ mod tests {
         for text in &texts {
             let doc: Value = serde_json::from_str(text).unwrap();
             let mut extra = doc.clone();
-            extra["note"] = json!({"a": [1, "x", {"b": [], "c": -2.5e-3}]});
+            extra["_note"] = json!({"a": [1, "x", {"b": [], "c": -2.5e-3}]});
             for robot in extra["robots"].as_array_mut().unwrap() {
-                robot["colour"] = json!("red");
-                robot["trajectory"][0]["tag"] = json!([[0]]);
+                robot["_colour"] = json!("red");
+                robot["trajectory"][0]["_tag"] = json!([[0]]);
             }
+            let mut unknown = doc.clone();
+            unknown["robots"][0]["trajectory"][0]["tag"] = json!(1);
             let mut nulls = doc.clone();
             nulls["robots"][0]["trajectory"][0]["vx"] = Value::Null;
             let variants = [
@@ -550,6 +561,7 @@ mod tests {
                 serde_json::to_string_pretty(&doc).unwrap(),
                 extra.to_string(),
                 nulls.to_string(),
+                unknown.to_string(),
             ];
             for (k, v) in variants.iter().enumerate() {
                 let (fast, serde) = both(v);
@@ -558,7 +570,8 @@ mod tests {
                         assert_eq!(fast, serde, "variant {k}");
                         read_fast += 1;
                     }
-                    None => assert_eq!(k, 4, "only `null` is left to serde:\n{v}"),
+                    None if k == 5 => assert!(serde.contains("unknown key `tag`"), "{serde}"),
+                    None => assert_eq!(k, 4, "only `null` and `tag` are left to serde:\n{v}"),
                 }
             }
         }

@@ -50,6 +50,28 @@ pub fn load_sequences(path: &Path, cell: &Cell) -> Result<Sequences, InputError>
     parse_sequences(&super::reading::read_file(path)?, path, cell)
 }
 
+/// The keys of a whole result, as `solve --json` and `evaluate --json` write them
+/// (`wcp::ResultJson`): any other is refused, so that a misspelt `waits` is not dropped.
+const RESULT_KEYS: &[&str] = &[
+    "makespan",
+    "collision_free",
+    "sequences",
+    "configurations",
+    "iterations",
+    "schedules_checked",
+    "waits",
+    "legs",
+    "blind_sequences",
+    "blind_makespan",
+    "blind_optimal",
+    "first_collision",
+    "feedback",
+    "failure",
+    "schedule",
+    "check_stats",
+    "stages_ms",
+];
+
 /// What a sequences document is when it is not one.
 const NOT_SEQUENCES: &str = "expected an object mapping robot names to lists of task names";
 
@@ -142,6 +164,12 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
     // a robot's name.
     let whole =
         top.iter().any(|(k, _)| k == "makespan") && top.iter().any(|(k, _)| k == "sequences");
+    if whole {
+        let keys = top.iter().map(|(k, _)| k.as_str());
+        if let Some((key, reason)) = super::object_only::first_unknown(keys, RESULT_KEYS) {
+            return Err(err(None, &key, reason));
+        }
+    }
     if blind && !whole {
         let reason = "not a whole `solve --json` result (with `makespan` and `sequences`)";
         return Err(err(None, "", reason.to_owned()));
@@ -159,7 +187,10 @@ fn parse(text: &str, file: &Path, cell: &Cell, key: &str) -> Result<Sequences, I
         let robots = entries(raw.get()).map_err(|_| err(None, key, NOT_SEQUENCES.to_owned()))?;
         (prefix.as_str(), robots)
     } else {
-        ("", top.clone())
+        // A key beginning with `_` is a comment, unless a robot has that name.
+        let comment = |k: &str| k.starts_with('_') && !cell.robots.iter().any(|r| r.name == k);
+        let robots = top.iter().filter(|(k, _)| !comment(k)).cloned().collect();
+        ("", robots)
     };
     let (routes, done_by) = routes(&robots, prefix, file, cell)?;
     if let Some(t) = done_by.iter().position(Option::is_none) {
@@ -212,6 +243,9 @@ fn configurations(
         })?;
     let mut out = vec![Vec::new(); cell.robots.len()];
     for (name, list) in lists {
+        if name.starts_with('_') && !cell.robots.iter().any(|r| r.name == name) {
+            continue;
+        }
         let field = format!("configurations.{name}");
         let Some(r) = cell.robots.iter().position(|x| x.name == name) else {
             return Err(err(
@@ -390,14 +424,49 @@ fn for_each_item<'a>(
 }
 
 /// The fields of one wait, unparsed.
-#[derive(serde::Deserialize)]
+#[derive(Default)]
 struct RawWait<'a> {
-    #[serde(borrow, default)]
     robot: Option<&'a RawValue>,
-    #[serde(borrow, default)]
     before_move: Option<&'a RawValue>,
-    #[serde(borrow, default)]
     duration: Option<&'a RawValue>,
+}
+
+/// A wait's keys: `before` is the move in words, as `solve` writes it (not read).
+const WAIT_KEYS: &[&str] = &["robot", "before_move", "before", "duration"];
+
+impl<'de: 'a, 'a> serde::Deserialize<'de> for RawWait<'a> {
+    /// An object of [`WAIT_KEYS`]; keys beginning with `_` skipped, any other refused.
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Fields;
+        impl<'de> Visitor<'de> for Fields {
+            type Value = RawWait<'de>;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a wait: an object with `robot`, `before_move` and `duration`")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+                let mut raw = RawWait::default();
+                while let Some(key) = map.next_key::<&'de str>()? {
+                    let slot = match key {
+                        "robot" => &mut raw.robot,
+                        "before_move" => &mut raw.before_move,
+                        "duration" => &mut raw.duration,
+                        "before" => {
+                            map.next_value::<de::IgnoredAny>()?;
+                            continue;
+                        }
+                        _ if key.starts_with('_') => {
+                            map.next_value::<de::IgnoredAny>()?;
+                            continue;
+                        }
+                        _ => return Err(de::Error::unknown_field(key, WAIT_KEYS)),
+                    };
+                    *slot = Some(map.next_value()?);
+                }
+                Ok(raw)
+            }
+        }
+        d.deserialize_map(Fields)
+    }
 }
 
 fn waits(
@@ -414,8 +483,15 @@ fn waits(
             let reason = "expected an object {\"robot\", \"before_move\", \"duration\"}";
             return Err(InputError::new(file, None, at, reason));
         }
-        let raw: RawWait = serde_json::from_str(item.get())
-            .map_err(|e| InputError::new(file, None, at.as_str(), e))?;
+        let raw: RawWait = serde_json::from_str(item.get()).map_err(|e| {
+            // serde_json's place is in the wait's own text, not the file's: left out.
+            let said = e.to_string();
+            let said = said.split(" at line ").next().unwrap_or_default();
+            match super::object_only::unknown_key(said) {
+                Some((key, reason)) => InputError::new(file, None, format!("{at}.{key}"), reason),
+                None => InputError::new(file, None, at.as_str(), said.to_owned()),
+            }
+        })?;
         let name = raw
             .robot
             .and_then(|v| serde_json::from_str::<String>(v.get()).ok());

@@ -76,7 +76,7 @@ fn duplicate_names_are_refused_across_kinds() {
 fn missing_limits_and_arms_are_named() {
     for field in ["max_speed", "max_accel", "max_turn_rate"] {
         let text = cell(&robot("R1", "[0, 0]"), "", "")
-            .replace(&format!(r#""{field}": "#), r#""other": "#);
+            .replace(&format!(r#""{field}": "#), r#""_other": "#);
         let e = refused(&text);
         assert_eq!(
             (e.body.as_deref(), e.field.as_str()),
@@ -96,7 +96,7 @@ fn missing_limits_and_arms_are_named() {
     );
     let opts = workcell::wcp::SolveOptions::default();
     assert!(workcell::wcp::prepare(&read, &opts, &()).is_ok());
-    let base_only = text.replace(r#""links": "#, r#""other": "#);
+    let base_only = text.replace(r#""links": "#, r#""_other": "#);
     assert_eq!(refused(&base_only).field, "robots[1].links");
 }
 
@@ -106,7 +106,7 @@ fn non_positive_limits_are_refused() {
         for bad in ["0", "-1", "1e400"] {
             let text = cell(&robot("R1", "[0, 0]"), "", "").replace(
                 &format!(r#""{field}": "#),
-                &format!(r#""{field}": {bad}, "x{field}": "#),
+                &format!(r#""{field}": {bad}, "_{field}": "#),
             );
             let e = parse_cell(&text, Path::new(FILE));
             let e = match e {
@@ -341,7 +341,7 @@ fn limits_and_durations_off_the_time_axis_are_refused() {
         for bad in ["5e-324", "1e-310"] {
             let text = cell(&robot("R1", "[0, 0]"), "", &task1).replace(
                 &format!(r#""{field}": "#),
-                &format!(r#""{field}": {bad}, "x{field}": "#),
+                &format!(r#""{field}": {bad}, "_{field}": "#),
             );
             let e = parse_cell(&text, Path::new(FILE)).expect_err(bad);
             assert_eq!(e.field, format!("robots[0].{field}"), "{e}");
@@ -382,7 +382,7 @@ fn limits_and_durations_off_the_time_axis_are_refused() {
             .replace(r#""max_accel": 2.0"#, r#""max_accel": 1e10"#)
             .replace(
                 &format!(r#""{field}": "#),
-                &format!(r#""{field}": {bad}, "x{field}": "#),
+                &format!(r#""{field}": {bad}, "_{field}": "#),
             );
         let e = parse_cell(&text, Path::new(FILE)).expect_err(bad);
         assert_eq!(e.field, format!("robots[0].{field}"), "{e}");
@@ -473,4 +473,74 @@ fn names_with_control_characters_are_refused() {
     // Letters of any script, spaces and symbols are names.
     let fine = cell(&robot("R1", "[0, 0]"), "", "").replace("\"R1\"", "\"Schweißroboter 1 ⟂ Ω\"");
     assert_eq!(ok(&fine).robots[0].name, "Schweißroboter 1 ⟂ Ω");
+}
+
+/// An unknown key is refused by its path with the nearest known key (a typo of `delta` must
+/// not leave δ at its default, nor `robot` drop a task's restriction); keys beginning with
+/// `_` are comments, skipped everywhere: in cells, scenes and sequences.
+#[test]
+fn unknown_keys_are_refused_and_underscored_keys_ignored() {
+    use workcell::cell::parse_scene;
+    let base = cell(
+        &robot("R1", "[0, 0]"),
+        WALL,
+        &task("t1", "[1, 2]", r#", "robots": ["R1"]"#),
+    );
+    let cases = [
+        (base.replace("\"delta\"", "\"delat\""), "delat", "delta"),
+        (
+            base.replace("\"robots\": [\"R1\"]", "\"robot\": [\"R1\"]"),
+            "tasks[0].robot",
+            "robots",
+        ),
+        (
+            base.replace("\"max_speed\"", "\"max_sped\""),
+            "robots[0].max_sped",
+            "max_speed",
+        ),
+        (
+            base.replace("\"name\": \"wall\"", "\"nam\": \"wall\""),
+            "obstacles[0].nam",
+            "name",
+        ),
+    ];
+    for (text, field, nearest) in cases {
+        let e = refused(&text);
+        assert_eq!(e.field, field, "{e}");
+        assert!(
+            e.reason.contains(&format!("did you mean `{nearest}`?")),
+            "{e}"
+        );
+    }
+    // Comments at every level are skipped, and change nothing.
+    let commented = base
+        .replacen(
+            '{',
+            r#"{"_comment": "a cell", "_tool": {"any": [1, 2]}, "#,
+            1,
+        )
+        .replace("\"name\": \"R1\"", "\"_note\": null, \"name\": \"R1\"")
+        .replace("\"name\": \"t1\"", "\"_by\": \"me\", \"name\": \"t1\"");
+    assert_eq!(ok(&commented).tasks, ok(&base).tasks);
+    assert_eq!(ok(&commented).robots[0].name, "R1");
+    // Scenes: a sample's key too.
+    let scene = r#"{"delta": 0.01, "_c": 1, "robots": [{"name": "R1", "shape": [[0,0],[1,0],[0,1]],
+        "trajectory": [{"t": 0, "x": 0, "y": 0, "_k": 2}]}]}"#;
+    assert!(parse_scene(scene, Path::new("s.json")).is_ok());
+    let e = parse_scene(&scene.replace("\"x\": 0", "\"xx\": 0"), Path::new("s.json")).unwrap_err();
+    assert_eq!(e.field, "robots[0].trajectory[0].xx", "{e}");
+    assert!(e.reason.contains("did you mean `x`?"), "{e}");
+    // Sequences: a comment beside the robots' lists.
+    let two = cell(
+        &[robot("R1", "[0, 0]"), robot("R2", "[5, 0]")].join(","),
+        "",
+        &task("t1", "[1, 2]", ""),
+    );
+    let c = ok(&two);
+    let s = parse_sequences(
+        r#"{"_why": "R1 alone", "R1": ["t1"]}"#,
+        Path::new("s.json"),
+        &c,
+    );
+    assert_eq!(s.unwrap().routes, [vec![0], vec![]]);
 }

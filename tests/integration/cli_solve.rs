@@ -738,3 +738,70 @@ fn outputs_that_are_not_plain_files() {
         eprintln!("skipped the full device: mknod needs root");
     }
 }
+
+/// A result given to `evaluate` holds only the keys `solve` writes (and comments beginning
+/// with `_`): a misspelt `waits`, a wait's, a leg's, a piece's or a primitive's key is
+/// refused by its path with the nearest known one, never dropped.
+#[test]
+fn evaluate_refuses_unknown_keys_in_a_result() {
+    let cell = shipped("feedback-cell.json");
+    let result = json(&workcell(&["solve", &cell, "--json"]));
+    let legs = result["legs"].as_array().expect("legs");
+    let k = (legs.iter())
+        .position(|l| l["pieces"][0].get("go").is_some())
+        .expect("a leg that starts with a motion");
+    let dir = temp_dir_made("solve", "unknown_result_keys");
+    let wait = serde_json::json!([{"robot": "R1", "befor_move": 0, "duration": 0.0}]);
+    let cases: [(&str, &str, Value, String, &str); 5] = [
+        ("", "wait", serde_json::json!([]), "wait".into(), "waits"),
+        (
+            "",
+            "waits",
+            wait,
+            "waits[0].befor_move".into(),
+            "before_move",
+        ),
+        (
+            &format!("/legs/{k}"),
+            "piece",
+            Value::Null,
+            format!("legs[{k}].piece"),
+            "pieces",
+        ),
+        (
+            &format!("/legs/{k}/pieces/0/go"),
+            "scal",
+            serde_json::json!(1.0),
+            format!("legs[{k}].pieces[0].go.scal"),
+            "scale",
+        ),
+        (
+            &format!("/legs/{k}/pieces/0/go/primitives/0"),
+            "thetta",
+            serde_json::json!(0.0),
+            format!("legs[{k}].pieces[0].go.primitives[0].thetta"),
+            "theta",
+        ),
+    ];
+    for (n, (at, key, value, field, nearest)) in cases.into_iter().enumerate() {
+        let mut bad = result.clone();
+        bad.pointer_mut(at).unwrap()[key] = value;
+        let file = dir.join(format!("bad-{n}.json"));
+        std::fs::write(&file, bad.to_string()).unwrap();
+        let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
+        refused_naming(
+            &o,
+            &file,
+            &[&format!("`{field}`"), &format!("did you mean `{nearest}`?")],
+        );
+    }
+    // Comments anywhere are skipped.
+    let mut commented = result.clone();
+    commented["_note"] = serde_json::json!("checked by hand");
+    commented["legs"][k]["_why"] = serde_json::json!({"any": 1});
+    commented["legs"][k]["pieces"][0]["go"]["_c"] = serde_json::json!(2);
+    let file = dir.join("commented.json");
+    std::fs::write(&file, commented.to_string()).unwrap();
+    let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+}
