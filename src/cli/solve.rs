@@ -334,8 +334,10 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
             Some(why) => format!("NO collision-free schedule: {why}"),
         };
         let plural = |n: usize| if n == 1 { "" } else { "s" };
+        // δ is what "collision-free" means here: the clearance certified.
         text += &format!(
-            " ({} round{}, {} schedule{} checked; collision-blind makespan {:.3}{})\n",
+            " (delta {}; {} round{}, {} schedule{} checked; collision-blind makespan {:.3}{})\n",
+            cell.delta,
             solved.iterations.len(),
             plural(solved.iterations.len()),
             solved.nodes,
@@ -412,9 +414,10 @@ pub fn run_evaluate(
     let text = if out.json {
         serde_json::to_string_pretty(&json).expect("a result serialises") + "\n"
     } else {
-        let verdict = failure
-            .as_deref()
-            .map_or("collision-free".to_owned(), |f| format!("REJECTED: {f}"));
+        let verdict = failure.as_deref().map_or_else(
+            || format!("collision-free (delta {})", cell.delta),
+            |f| format!("REJECTED: {f}"),
+        );
         let rounds: [Iteration; 0] = [];
         format!("{}: {verdict}\n", sequences.display())
             + &summary(

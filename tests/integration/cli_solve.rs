@@ -805,3 +805,35 @@ fn evaluate_refuses_unknown_keys_in_a_result() {
     let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
 }
+
+/// Every summary that claims collision-free says for which δ (a cell's own, here 0.02, not
+/// the default): `solve`'s first line and `evaluate`'s verdict.
+#[test]
+fn summaries_that_claim_collision_free_give_delta() {
+    let dir = temp_dir_made("solve", "summary_delta");
+    let text = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
+    let mut doc: Value = serde_json::from_str(&text).unwrap();
+    doc["delta"] = serde_json::json!(0.02);
+    let cell = dir.join("cell.json");
+    std::fs::write(&cell, doc.to_string()).unwrap();
+    let cell = cell.to_str().unwrap();
+    let solved = workcell(&["solve", cell]);
+    let first = text_of_first_line(&solved);
+    assert!(
+        first.contains("collision-free schedule (delta 0.02;"),
+        "{first}"
+    );
+    let result = dir.join("result.json");
+    std::fs::write(&result, workcell(&["solve", cell, "--json"]).stdout).unwrap();
+    let evaluated = workcell(&["evaluate", cell, result.to_str().unwrap()]);
+    let first = text_of_first_line(&evaluated);
+    assert!(first.ends_with(": collision-free (delta 0.02)"), "{first}");
+}
+
+fn text_of_first_line(o: &Output) -> String {
+    text(&o.stdout)
+        .lines()
+        .next()
+        .unwrap_or_default()
+        .to_owned()
+}
