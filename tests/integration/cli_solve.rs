@@ -590,20 +590,7 @@ fn evaluate_names_the_piece_of_a_leg_that_breaks_the_time_axis() {
             "stretches",
         ),
     ];
-    for (n, (pointer, value, field, says)) in cases.into_iter().enumerate() {
-        let mut bad = result.clone();
-        *bad.pointer_mut(&pointer).unwrap() = serde_json::json!(value);
-        let file = dir.join(format!("bad-{n}.json"));
-        std::fs::write(&file, bad.to_string()).unwrap();
-        let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
-        assert_eq!(o.status.code(), Some(2), "{pointer} = {value}");
-        let err = text(&o.stderr);
-        assert!(
-            err.contains(file.to_str().unwrap()) && err.contains(&format!("`{field}`")),
-            "{err}"
-        );
-        assert!(err.contains(says), "{err}");
-    }
+    evaluate_refuses_each(&cell, &result, &dir, &cases, &[]);
 }
 
 /// A leg's angle or coordinate beyond what f64 resolves at δ (as the cell's own are) is
@@ -638,20 +625,7 @@ fn evaluate_refuses_leg_angles_and_coordinates_f64_cannot_resolve() {
             "coordinate",
         ),
     ];
-    for (n, (pointer, value, field, says)) in cases.into_iter().enumerate() {
-        let mut bad = result.clone();
-        *bad.pointer_mut(&pointer).unwrap() = serde_json::json!(value);
-        let file = dir.join(format!("bad-{n}.json"));
-        std::fs::write(&file, bad.to_string()).unwrap();
-        let o = workcell(&["evaluate", &cell, file.to_str().unwrap()]);
-        assert_eq!(o.status.code(), Some(2), "{pointer} = {value}");
-        let err = text(&o.stderr);
-        assert!(
-            err.contains(file.to_str().unwrap()) && err.contains(&format!("`{field}`")),
-            "{err}"
-        );
-        assert!(err.contains(says) && err.contains("too large"), "{err}");
-    }
+    evaluate_refuses_each(&cell, &result, &dir, &cases, &["too large"]);
     // The result as solved is still taken.
     let file = dir.join("good.json");
     std::fs::write(&file, result.to_string()).unwrap();
@@ -836,4 +810,30 @@ fn text_of_first_line(o: &Output) -> String {
         .next()
         .unwrap_or_default()
         .to_owned()
+}
+
+/// `evaluate` on `result` with each case's value put at its JSON pointer: exit 2, naming the
+/// file written and the case's field, saying the case's words and every one of `also`.
+fn evaluate_refuses_each(
+    cell: &str,
+    result: &Value,
+    dir: &Path,
+    cases: &[(String, f64, String, &str)],
+    also: &[&str],
+) {
+    for (n, (pointer, value, field, says)) in cases.iter().enumerate() {
+        let mut bad = result.clone();
+        *bad.pointer_mut(pointer).unwrap() = serde_json::json!(value);
+        let file = dir.join(format!("bad-{n}.json"));
+        std::fs::write(&file, bad.to_string()).unwrap();
+        let o = workcell(&["evaluate", cell, file.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{pointer} = {value}");
+        let err = text(&o.stderr);
+        assert!(
+            err.contains(file.to_str().unwrap()) && err.contains(&format!("`{field}`")),
+            "{err}"
+        );
+        assert!(err.contains(says), "{err}");
+        assert!(also.iter().all(|w| err.contains(w)), "{err}");
+    }
 }
