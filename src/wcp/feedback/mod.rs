@@ -3,7 +3,7 @@
 //!
 //! Two ways to feed a collision back: [`Feedback::Search`] (the default) searches over
 //! remedies best-first on makespan, in the manner of conflict-based search (see
-//! `search.rs`); [`Feedback::Greedy`] takes the best of two remedies each round and never
+//! `search/`); [`Feedback::Greedy`] takes the best of two remedies each round and never
 //! looks back (see `greedy.rs`), kept to compare against.
 
 mod clearing;

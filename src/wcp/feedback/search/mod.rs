@@ -29,9 +29,11 @@
 //! that reaches it may differ from run to run). Without any certified schedule, the search
 //! reports the schedule whose first collision came latest, and that collision.
 
+mod pending;
+
 use super::fingerprint::fingerprint;
 use super::outcome::{build, Iteration, Remedy, Solved};
-use super::reconfigure::{self, reconfigurations, reconfigured, Reconfig};
+use super::reconfigure::{self, reconfigurations, Reconfig};
 use super::remedies::{candidates, Child, Ctx, View};
 use crate::cell::{Cell, InputError};
 use crate::collision::{check, CheckReport};
@@ -115,19 +117,6 @@ impl Ord for Ordered {
 /// makespan, and the node's index (older first).
 type Key = (usize, usize, Reverse<usize>, Ordered, usize);
 
-/// A re-sequencing runs this fraction (its inverse) of the sequencer's local search.
-const RESEQUENCE_SHARE: usize = 2;
-/// From this many tasks on (up to [`sequencer::GRANULAR_FROM_TASKS`]), a re-sequencing is a
-/// local repair: its share of the local search shrinks further to the share of the tasks
-/// the two robots of the new conflict do. Each child departs from routes already searched,
-/// and only those two robots' routes are wrong; a full-length search per child made
-/// 12 robots x 120 tasks spend 19 s of CPU, nearly all sequencing (14.5 s now, same result).
-/// Granular cells keep the full share: there the cost of a child lies elsewhere (lazy
-/// rounds), and shorter searches only made more children (50 x 1000: 92 s instead of 48).
-const LOCAL_RESEQUENCE_FROM_TASKS: usize = 100;
-/// The fewest local-search rounds of a local repair.
-const LOCAL_RESEQUENCE_MIN_ITERATIONS: usize = 8;
-
 /// Two makespans closer than this (relative) are the same: a node must beat the bound by
 /// more to be worth checking.
 const SAME_MAKESPAN: f64 = 1e-9;
@@ -135,8 +124,9 @@ const SAME_MAKESPAN: f64 = 1e-9;
 /// What a re-sequencing asks the sequencer, which answers it deterministically: the routes
 /// it departs from, the conflicts to avoid (sorted), the preparation whose configurations
 /// it plans with (its address: every preparation lives as long as the search, held by the
-/// nodes), and the rounds of local search it is given (see [`Search::resequencer`]). Parents whose routes agree and whose legs differ ask the same
-/// question: a third of the re-sequencings of a 4-arm cell of 40 tasks.
+/// nodes), and the rounds of local search it is given (see [`Search::resequencer`]).
+/// Parents whose routes agree and whose legs differ ask the same question: a third of the
+/// re-sequencings of a 4-arm cell of 40 tasks.
 type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize);
 
 /// A collision as the remedies see it: the addresses of the two robots' schedules, the
@@ -355,27 +345,6 @@ impl Search<'_> {
         })
     }
 
-    /// The settings of a re-sequencing of `routes` forbidding `conflict`: the exact search as
-    /// for the blind schedule, and a share of the local search, started from the parent's
-    /// routes (a re-sequencing is one of many children; the routes it departs from were
-    /// searched in full). On large cells the share scales with the tasks of the conflict's
-    /// two robots (see [`LOCAL_RESEQUENCE_FROM_TASKS`]): rounds, not time, so the result
-    /// stays deterministic.
-    fn resequencer(&self, conflict: &Conflict, routes: &[Vec<usize>]) -> SolveOptions {
-        let mut opts = self.opts.clone();
-        let share = (opts.sequencer.iterations / RESEQUENCE_SHARE).max(1);
-        let tasks = self.cell.tasks.len();
-        let local = (LOCAL_RESEQUENCE_FROM_TASKS..sequencer::GRANULAR_FROM_TASKS).contains(&tasks);
-        opts.sequencer.iterations = if local {
-            let (a, b) = (conflict.a.0, conflict.b.0);
-            let touched = routes[a].len() + if a == b { 0 } else { routes[b].len() };
-            (share * touched / tasks).clamp(LOCAL_RESEQUENCE_MIN_ITERATIONS.min(share), share)
-        } else {
-            share
-        };
-        opts
-    }
-
     /// Checks the nodes given (in parallel, results in order) and records the verdicts.
     fn check_all(&mut self, ids: &[usize], progress: &dyn Progress) {
         let clock = Instant::now();
@@ -416,105 +385,6 @@ impl Search<'_> {
                 }
             }
             // Otherwise a graze the checker can neither prove nor refute: a dead end.
-        }
-    }
-
-    /// Runs the re-sequencing that node `id` stands for and checks it, unless the sequencer
-    /// cannot avoid every conflict or the schedule is one seen before.
-    fn cost_resequencing(
-        &mut self,
-        id: usize,
-        conflict: Conflict,
-        progress: &dyn Progress,
-    ) -> Result<(), InputError> {
-        // Kept sorted, so that the same set is the same question however it was reached.
-        let mut conflicts = (*self.nodes[id].conflicts).clone();
-        if let Err(k) = conflicts.binary_search(&conflict) {
-            conflicts.insert(k, conflict);
-        }
-        let clock = Instant::now();
-        let routes = &self.nodes[id].routes;
-        let asked = self.prepared_of(id) as *const Prepared as usize;
-        let opts = self.resequencer(&conflict, routes);
-        let question = (routes.clone(), conflicts, asked, opts.sequencer.iterations);
-        let solution = match self.sequenced.get(&question) {
-            Some(answer) => answer.clone(),
-            None => {
-                let answer = sequence_with(
-                    self.cell,
-                    self.prepared_of(id),
-                    &question.1,
-                    &opts,
-                    Some(routes),
-                    &(),
-                )?;
-                self.sequenced.insert(question.clone(), answer.clone());
-                answer
-            }
-        };
-        let conflicts = question.1;
-        self.times.sequencing += clock.elapsed();
-        // Robots whose routes stay keep their legs: their remedies still answer their
-        // collisions.
-        let mut legs = default_legs(self.cell.robots.len());
-        for (r, route) in solution.sequences.iter().enumerate() {
-            if *route == self.nodes[id].routes[r] {
-                legs[r] = self.nodes[id].legs[r].clone();
-            }
-        }
-        let assignment = self.prepared_of(id).moves.assignment();
-        let print = fingerprint(&solution.sequences, &legs, assignment);
-        if solution.violations > 0 || !self.seen.insert(print) {
-            return Ok(());
-        }
-        let clock = Instant::now();
-        let moves = &self.prepared_of(id).moves;
-        let schedule = build(self.cell, &solution.sequences, &legs, moves)?;
-        self.times.scheduling += clock.elapsed();
-        let node = &mut self.nodes[id];
-        node.routes = Arc::new(solution.sequences);
-        node.conflicts = Arc::new(conflicts);
-        node.legs = legs;
-        node.makespan = schedule.makespan;
-        node.robots = schedule.robots;
-        if self.worth(id) {
-            self.check_all(&[id], progress);
-            if self.collision(id).is_some() {
-                self.enqueue(id);
-            }
-        }
-        Ok(())
-    }
-
-    /// Makes the reconfiguration that node `id` stands for and checks it, unless a move
-    /// cannot be planned or the schedule is one seen before.
-    fn cost_reconfiguration(&mut self, id: usize, r: Reconfig, progress: &dyn Progress) {
-        let clock = Instant::now();
-        let node = &self.nodes[id];
-        let view = View {
-            routes: &node.routes,
-            legs: &node.legs,
-            robots: &node.robots,
-        };
-        let made = reconfigured(self.cell, self.prepared_of(id), &view, r);
-        self.times.scheduling += clock.elapsed();
-        let Some((child, prepared)) = made else {
-            return;
-        };
-        let print = fingerprint(&node.routes, &child.legs, prepared.moves.assignment());
-        if !self.seen.insert(print) {
-            return;
-        }
-        let node = &mut self.nodes[id];
-        node.legs = child.legs;
-        node.robots[child.robot] = child.schedule;
-        node.makespan = node.robots.iter().map(|s| s.end).fold(0.0, f64::max);
-        node.prepared = Some(prepared);
-        if self.worth(id) {
-            self.check_all(&[id], progress);
-            if self.collision(id).is_some() {
-                self.enqueue(id);
-            }
         }
     }
 
@@ -679,23 +549,6 @@ impl Search<'_> {
                 self.enqueue(k);
             }
         }
-    }
-
-    /// Queues `node`, a re-sequencing that forbids collision `c`'s conflict (the sequencer
-    /// plans it when it is taken), if the collision is between two robots at known steps.
-    fn queue_resequencing(&mut self, node: Node, c: &Collision) {
-        let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
-            return;
-        };
-        let conflict = Conflict {
-            a: (c.robots.0, c.segments.0.activity.step()),
-            b: (b, sb.activity.step()),
-        };
-        let pending = self.add(Node {
-            pending: Some(Pending::Resequence(conflict)),
-            ..node
-        });
-        self.enqueue(pending);
     }
 
     /// The result for node `id`: its schedule, and the rounds from the root to it.
