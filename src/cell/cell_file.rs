@@ -147,7 +147,8 @@ pub fn parse_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
 /// The cell as written, with names, poses, limits and task lists checked: everything but
 /// its geometry (see [`check_geometry`]).
 fn read_cell(text: &str, file: &Path) -> Result<LoadedCell, InputError> {
-    let raw: RawCell = document(text, file, "cell")?;
+    let raw: RawCell =
+        document(text, file, "cell").map_err(|e| scene_instead(text, file).unwrap_or(e))?;
     let delta = delta(raw.delta, file)?;
     let mut names = Names::default();
     let mut warnings = Vec::new();
@@ -498,4 +499,19 @@ fn pose(values: &[f64]) -> Result<Pose, String> {
         pos: Vec2::new(x, y),
         theta,
     })
+}
+
+/// The error for a scene given where a cell is read: what `check` says of a cell given to
+/// it, the other way round (a robot with a `trajectory` and no `tasks`).
+fn scene_instead(text: &str, file: &Path) -> Option<InputError> {
+    // Maps, not structs: serde would read a struct from an array as well.
+    type Keys = HashMap<String, serde_json::Value>;
+    let keys: Keys = serde_json::from_str(text).ok()?;
+    let robots = keys.get("robots")?.as_array()?;
+    let sampled = robots.iter().any(|r| r.get("trajectory").is_some());
+    (sampled && !keys.contains_key("tasks")).then_some(())?;
+    let reason = "this is a scene (robots with trajectories), not a cell: use `workcell check` \
+                  on it; `solve` and `evaluate` read cells (robots with homes and limits, and \
+                  tasks)";
+    Some(InputError::new(file, None, "robots[0].trajectory", reason))
 }

@@ -837,3 +837,50 @@ fn evaluate_refuses_each(
         assert!(also.iter().all(|w| err.contains(w)), "{err}");
     }
 }
+
+/// `solve` and `evaluate` given a scene say so, as `check` given a cell does, rather than
+/// refusing its `trajectory` as an unknown key.
+#[test]
+fn solve_and_evaluate_on_a_scene_say_it_is_a_scene() {
+    let scene = shipped("paper-fig12b.json");
+    let dir = temp_dir_made("solve", "scene_given");
+    let sequences = dir.join("s.json");
+    std::fs::write(&sequences, r#"{"R1": []}"#).unwrap();
+    for args in [
+        vec!["solve", scene.as_str()],
+        vec!["evaluate", scene.as_str(), sequences.to_str().unwrap()],
+    ] {
+        let o = workcell(&args);
+        let words = ["this is a scene", "use `workcell check` on it"];
+        refused_naming(&o, Path::new(&scene), &words);
+    }
+}
+
+/// A task pose where the robot's body overlaps a fixture (or comes within δ of it) is
+/// refused as such, naming the fixture, not as a turn the move cannot make.
+#[test]
+fn a_task_pose_overlapping_a_fixture_is_told_as_such() {
+    let original = std::fs::read_to_string(shipped("feedback-cell.json")).unwrap();
+    let dir = temp_dir_made("solve", "pose_overlaps");
+    // R1's half-width is 0.5; the fixture starts at x = 4.
+    for (x, says) in [
+        (3.7, "overlaps obstacle \"fixture\""),
+        (3.495, "comes within delta"),
+    ] {
+        let mut doc: Value = serde_json::from_str(&original).unwrap();
+        doc["tasks"][0]["at"] = serde_json::json!([x, 3.0, 0.0]);
+        let cell = dir.join(format!("cell-{x}.json"));
+        std::fs::write(&cell, doc.to_string()).unwrap();
+        let o = workcell(&["solve", cell.to_str().unwrap()]);
+        refused_naming(
+            &o,
+            &cell,
+            &["`tasks[0].at`", "at the goal pose the robot's body", says],
+        );
+        assert!(
+            !text(&o.stderr).contains("cannot turn"),
+            "{}",
+            text(&o.stderr)
+        );
+    }
+}

@@ -12,7 +12,7 @@ use super::sequencer::{node_task, task_node};
 use super::sequencer::{BoundLimits, Bounds, JointNodes};
 use crate::cell::{Cell, RigidRobot, RobotKind};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
-use crate::geometry::{ConvexPolygon, Vec2};
+use crate::geometry::{closest_features, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::motion::{tool_pose, Pose, Sample, Trajectory};
 use crate::planning::{plan_move, PlanError, PlannedMove, PlannerOptions, RobotLimits};
 use std::fmt;
@@ -44,6 +44,16 @@ pub enum MoveFailure {
     },
     /// The checker could neither certify nor refute the move (it grazes δ).
     NotCertified,
+    /// At one end the robot's body itself, at that pose, comes within δ of an obstacle: no
+    /// move starts or ends there, however it turns.
+    Overlaps {
+        /// `"start"` or `"goal"`.
+        end: &'static str,
+        /// The obstacle.
+        obstacle: String,
+        /// The distance between the body and the obstacle there (0 where they overlap).
+        distance: f64,
+    },
     /// An arm has no configuration at one of the move's ends.
     NoConfiguration,
     /// An arm's straight joint-space move hits a fixture and no path around it was found.
@@ -65,6 +75,23 @@ impl fmt::Display for MoveFailure {
                 "the planned move comes within delta of obstacle \"{obstacle}\" at t = {time:.6} \
                  (refused by the checker)"
             ),
+            MoveFailure::Overlaps {
+                end,
+                obstacle,
+                distance,
+            } => {
+                let how = match *distance > 0.0 {
+                    true => format!(
+                        "comes within delta of obstacle \"{obstacle}\" ({distance:.3e} apart)"
+                    ),
+                    false => format!("overlaps obstacle \"{obstacle}\""),
+                };
+                write!(
+                    f,
+                    "at the {end} pose the robot's body {how}: no move starts or ends there; \
+                     move the pose or the obstacle"
+                )
+            }
             MoveFailure::NoConfiguration => write!(
                 f,
                 "the arm has no joint angles that put its tool at the task clear of the fixtures"
@@ -219,17 +246,41 @@ fn plan_only(
         b,
         planner,
     )
-    .map_err(|e| match e {
-        PlanError::StartBlocked { obstacle } => MoveFailure::Blocked {
-            end: "start",
-            obstacle: name(obstacle),
-        },
-        PlanError::GoalBlocked { obstacle } => MoveFailure::Blocked {
-            end: "goal",
-            obstacle: name(obstacle),
-        },
-        other => MoveFailure::Plan(other),
+    .map_err(|e| {
+        let (end, pose, piece) = match e {
+            PlanError::StartBlocked { obstacle } => ("start", a, obstacle),
+            PlanError::GoalBlocked { obstacle } => ("goal", b, obstacle),
+            other => return MoveFailure::Plan(other),
+        };
+        // Blocked for the move's rotation, or already at the pose itself: the second is
+        // the cause to tell.
+        let distance = body_distance(robot.pieces(), pose, &fixtures.pieces[piece]);
+        match distance < cell.delta {
+            true => MoveFailure::Overlaps {
+                end,
+                obstacle: name(piece),
+                distance,
+            },
+            false => MoveFailure::Blocked {
+                end,
+                obstacle: name(piece),
+            },
+        }
     })
+}
+
+/// The distance between a body's pieces placed at `pose` and a fixed convex piece (0 where
+/// they overlap).
+fn body_distance(pieces: &[ConvexPolygon], pose: Pose, fixed: &ConvexPolygon) -> f64 {
+    let tol = WalkTolerances::default();
+    let fixed = Posed::new(fixed, 0.0, 0.0, 0.0);
+    pieces
+        .iter()
+        .map(|p| {
+            let placed = Posed::new(p, pose.pos.x, pose.pos.y, pose.theta);
+            closest_features(&placed, &fixed, None, &tol).distance
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Relative slack on the distances within which an obstacle counts as near a move.
