@@ -223,11 +223,12 @@ fn new_file_permissions(_: &mut tempfile::Builder) {}
 /// however the paths are spelled (`./a/../cell.json`, a link): writing it would replace a
 /// file still to be read, or one result by another. `outputs` pairs each path with the
 /// option that names it. Outputs written through (devices, FIFOs, descriptors) replace
-/// nothing and are not compared.
+/// nothing and are not compared; a path no output can be written to is refused here.
 pub fn check_outputs(inputs: &[&Path], outputs: &[(&str, &Path)]) -> Result<(), InputError> {
-    let replaced = |p: &Path| !matches!(target(p), Ok(Target::Through(_)));
     for (k, &(option, output)) in outputs.iter().enumerate() {
-        if !replaced(output) {
+        // A path that cannot take an output (a folder, a link to nothing) is refused now,
+        // before any work.
+        if let Target::Through(_) = target(output)? {
             continue;
         }
         let refuse = |what: String| {
@@ -342,6 +343,10 @@ mod tests {
             .reason
             .contains("symbolic link"));
         assert!(target(&d).unwrap_err().reason.contains("folder"));
+        // Refused before any work, as a folder is.
+        assert!(check_outputs(&[], &[("--svg", &dangling)]).is_err());
+        assert!(check_outputs(&[], &[("--svg", &d)]).is_err());
+        assert!(check_outputs(&[], &[("--svg", Path::new("/dev/null"))]).is_ok());
         assert!(matches!(
             target(Path::new("/dev/null")),
             Ok(Target::Through(_))
