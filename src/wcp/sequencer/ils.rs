@@ -35,13 +35,23 @@ pub(super) fn search(
     start: Start,
     on_best: &(dyn Fn(f64) + Sync),
 ) -> Plan {
+    // Every restart's first descent from a shared plan is the same (a descent draws no
+    // random numbers): made once.
+    let shared = match &start {
+        Start::All(plan) => {
+            let mut plan = plan.clone();
+            descend(model, &mut plan, &mut Scratch::default(), None);
+            Some(plan)
+        }
+        Start::Fresh(_) => None,
+    };
     let plans: Vec<Plan> = (0..opts.restarts.max(1))
         .into_par_iter()
         .map(|k| {
-            let first = match &start {
-                Start::Fresh(plan) if k == 0 => plan.clone(),
-                Start::Fresh(_) => None,
-                Start::All(plan) => Some(plan.clone()),
+            let first = match (&start, &shared) {
+                (_, Some(descended)) => Begin::Descended(descended.clone()),
+                (Start::Fresh(Some(plan)), None) if k == 0 => Begin::From(plan.clone()),
+                _ => Begin::Built,
             };
             restart(model, opts, k, first, on_best)
         })
@@ -57,6 +67,16 @@ pub(super) fn search(
         }
     }
     best.expect("at least one restart")
+}
+
+/// Where one restart begins.
+enum Begin {
+    /// Its own construction, then a descent.
+    Built,
+    /// This plan, then a descent.
+    From(Plan),
+    /// This plan, a local optimum already.
+    Descended(Plan),
 }
 
 /// How much longer than the best makespan an accepted plan may be.
@@ -88,20 +108,29 @@ fn restart(
     model: &Model,
     opts: &SequencerOptions,
     k: usize,
-    start: Option<Plan>,
+    start: Begin,
     on_best: &(dyn Fn(f64) + Sync),
 ) -> Plan {
     // One stream of the seed per restart: restarts are independent of each other.
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     rng.set_stream(k as u64);
     let mut scratch = Scratch::default();
-    let mut current = start.unwrap_or_else(|| {
-        let mut plan = Plan::empty(model);
-        let order = initial_order(model, k, &mut rng);
-        insert_all(model, &mut plan, &order, &mut scratch);
-        plan
-    });
-    descend(model, &mut current, &mut scratch, None);
+    let mut current = match start {
+        Begin::Descended(plan) => plan,
+        begin => {
+            let mut plan = match begin {
+                Begin::From(plan) => plan,
+                _ => {
+                    let mut plan = Plan::empty(model);
+                    let order = initial_order(model, k, &mut rng);
+                    insert_all(model, &mut plan, &order, &mut scratch);
+                    plan
+                }
+            };
+            descend(model, &mut plan, &mut scratch, None);
+            plan
+        }
+    };
     let mut best = current.clone();
     on_best(best.obj().makespan);
     let (rounds, slack) = if model.neighbours.is_some() {
