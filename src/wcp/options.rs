@@ -108,6 +108,10 @@ pub struct SearchOptions {
     /// the search still finds better schedules after thousands of checks). Counted in
     /// schedules, not seconds, so that the result does not depend on the machine.
     pub patience: Option<usize>,
+    /// Whether a question asked again is answered from memory: a re-sequencing of the same
+    /// routes and conflicts, the remedies of a collision between the same two schedules.
+    /// On by default; off only to check that remembering changes nothing but the time.
+    pub remember: bool,
 }
 
 impl Default for SearchOptions {
@@ -117,6 +121,7 @@ impl Default for SearchOptions {
             time_limit: Duration::from_secs(60),
             remedies: Remedies::default(),
             patience: None,
+            remember: true,
         }
     }
 }

@@ -412,6 +412,7 @@ impl Search<'_> {
             let key = (at(a), at(b), prepared_at, c.time.to_bits());
             (key, [a.clone(), b.clone()])
         });
+        let met = met.filter(|_| self.opts.search.remember);
         let known = met.as_ref().and_then(|(key, _)| self.remedied.get(key));
         let mut learnt = None;
         let children = match known {

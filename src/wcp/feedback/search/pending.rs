@@ -81,7 +81,9 @@ impl Search<'_> {
                     Some(routes),
                     &(),
                 )?;
-                self.sequenced.insert(question.clone(), answer.clone());
+                if self.opts.search.remember {
+                    self.sequenced.insert(question.clone(), answer.clone());
+                }
                 answer
             }
         };
