@@ -681,16 +681,20 @@ fn outputs_that_are_not_plain_files() {
         .unwrap()
         .file_type()
         .is_fifo());
-    // A reader: it gets the whole picture.
-    let reader = {
-        let fifo = fifo.clone();
-        std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+    // A reader, there before the writer (opened without waiting for one, so no race): it
+    // gets the whole picture, which fits the pipe's buffer.
+    let mut reader = {
+        use std::os::unix::fs::OpenOptionsExt;
+        let open = std::fs::OpenOptions::new()
+            .read(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(&fifo);
+        open.unwrap()
     };
-    // The reader counts as one as soon as it waits in open().
-    std::thread::sleep(std::time::Duration::from_millis(200));
     let o = workcell(&["solve", &cell, "--svg", fifo.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
-    let got = reader.join().unwrap();
+    let mut got = String::new();
+    std::io::Read::read_to_string(&mut reader, &mut got).unwrap();
     assert!(got.starts_with("<svg") && got.trim_end().ends_with("</svg>"));
     assert!(std::fs::symlink_metadata(&fifo)
         .unwrap()
