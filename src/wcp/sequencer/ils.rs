@@ -115,22 +115,19 @@ fn restart(
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     rng.set_stream(k as u64);
     let mut scratch = Scratch::default();
-    let mut current = match start {
-        Begin::Descended(plan) => plan,
-        begin => {
-            let mut plan = match begin {
-                Begin::From(plan) => plan,
-                _ => {
-                    let mut plan = Plan::empty(model);
-                    let order = initial_order(model, k, &mut rng);
-                    insert_all(model, &mut plan, &order, &mut scratch);
-                    plan
-                }
-            };
-            descend(model, &mut plan, &mut scratch, None);
-            plan
+    let (mut current, descended) = match start {
+        Begin::Descended(plan) => (plan, true),
+        Begin::From(plan) => (plan, false),
+        Begin::Built => {
+            let mut plan = Plan::empty(model);
+            let order = initial_order(model, k, &mut rng);
+            insert_all(model, &mut plan, &order, &mut scratch);
+            (plan, false)
         }
     };
+    if !descended {
+        descend(model, &mut current, &mut scratch, None);
+    }
     let mut best = current.clone();
     on_best(best.obj().makespan);
     let (rounds, slack) = if model.neighbours.is_some() {
