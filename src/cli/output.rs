@@ -69,9 +69,11 @@ fn target(file: &Path) -> Result<Target, InputError> {
         })?,
         false => file.to_path_buf(),
     };
+    use std::io::ErrorKind::{NotADirectory, NotFound};
     let meta = match std::fs::metadata(&path) {
         Ok(meta) => meta,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Target::Replace(path)),
+        // No file yet (perhaps no folder either: the check before any work says which).
+        Err(e) if matches!(e.kind(), NotFound | NotADirectory) => return Ok(Target::Replace(path)),
         Err(e) => return Err(error(file, format!("cannot write the file: {e}"))),
     };
     let kind = meta.file_type();
@@ -228,8 +230,13 @@ pub fn check_outputs(inputs: &[&Path], outputs: &[(&str, &Path)]) -> Result<(), 
     for (k, &(option, output)) in outputs.iter().enumerate() {
         // A path that cannot take an output (a folder, a link to nothing) is refused now,
         // before any work.
-        if let Target::Through(_) = target(output)? {
-            continue;
+        match target(output)? {
+            Target::Through(_) => continue,
+            Target::Replace(path) => can_create(option, output, &path)?,
+            Target::InPlace(path) => {
+                let open = std::fs::OpenOptions::new().write(true).open(&path);
+                open.map_err(|e| error(output, format!("`{option}` cannot write it: {e}")))?;
+            }
         }
         let refuse = |what: String| {
             error(
@@ -246,6 +253,40 @@ pub fn check_outputs(inputs: &[&Path], outputs: &[(&str, &Path)]) -> Result<(), 
         }
     }
     Ok(())
+}
+
+/// Whether a file can be created beside `path` (which a replacement does): its folder
+/// exists and takes a new file. Tried with a temporary file, removed at once, so that
+/// permissions, read-only mounts and quotas all answer as they will for the output.
+fn can_create(option: &str, output: &Path, path: &Path) -> Result<(), InputError> {
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        let why = match folder.exists() {
+            true => "which is not a folder",
+            false => "which does not exist; create it first",
+        };
+        let reason = format!(
+            "`{option}` names a file in the folder {}, {why}",
+            folder.display()
+        );
+        return Err(error(output, reason));
+    }
+    let probe = tempfile::Builder::new()
+        .prefix(".workcell-")
+        .suffix(".tmp")
+        .tempfile_in(folder);
+    probe.map(drop).map_err(|e| {
+        let text = e.to_string();
+        let why = text.split(" at path \"").next().unwrap_or(&text);
+        let reason = format!(
+            "`{option}` cannot create a file in the folder {}: {why}",
+            folder.display()
+        );
+        error(output, reason)
+    })
 }
 
 /// Whether two paths name one file: the same file on disk (links of either kind included),
@@ -312,7 +353,55 @@ mod tests {
             ("--svg", Path::new("/nonexistent-a/x.svg")),
             ("--gantt", Path::new("/nonexistent-b/y.svg")),
         ];
-        assert!(check_outputs(&[&a], &outputs).is_ok());
+        // Refused for its own cause: the first folder is missing.
+        let refused = check_outputs(&[&a], &outputs).unwrap_err();
+        assert!(refused
+            .reason
+            .contains("/nonexistent-a, which does not exist"));
+        assert!(check_outputs(&[&a], &[("--svg", &d.join("new.svg"))]).is_ok());
+    }
+
+    #[test]
+    fn an_output_folder_that_takes_no_file_is_refused_before_any_work() {
+        use std::os::unix::fs::PermissionsExt;
+        let d = dir("readonly");
+        let locked = d.join("locked");
+        std::fs::create_dir(&locked).unwrap();
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o555)).unwrap();
+        let probe = tempfile::tempfile_in(&locked);
+        let result = check_outputs(&[], &[("--svg", &locked.join("x.svg"))]);
+        // Root writes anywhere: then the check must let it through, as the write would.
+        match probe {
+            Ok(_) => assert!(result.is_ok()),
+            Err(_) => {
+                let reason = result.unwrap_err().reason;
+                assert!(
+                    reason.contains("cannot create a file in the folder"),
+                    "{reason}"
+                );
+            }
+        }
+        assert!(
+            std::fs::read_dir(&locked).unwrap().next().is_none(),
+            "probe left behind"
+        );
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
+        // A folder no one writes in, root included.
+        if Path::new("/proc/self").exists() {
+            let reason = check_outputs(&[], &[("--svg", Path::new("/proc/x.svg"))])
+                .unwrap_err()
+                .reason;
+            assert!(
+                reason.contains("cannot create a file in the folder /proc"),
+                "{reason}"
+            );
+        }
+        let file = d.join("plain.txt");
+        std::fs::write(&file, "").unwrap();
+        let reason = check_outputs(&[], &[("--svg", &file.join("x.svg"))])
+            .unwrap_err()
+            .reason;
+        assert!(reason.contains("which is not a folder"), "{reason}");
     }
 
     #[test]

@@ -191,7 +191,7 @@ fn bad_cells_and_sequences_exit_2_naming_file_body_and_field() {
         "{err}"
     );
 
-    // An export that cannot be written: the result is still printed, then exit 2.
+    // An export into a folder that does not exist: refused before any work, naming it.
     let out = workcell(&[
         "solve",
         &shipped("paper-cell.json"),
@@ -199,8 +199,12 @@ fn bad_cells_and_sequences_exit_2_naming_file_body_and_field() {
         "/no/such/dir/x.svg",
     ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stdout).contains("makespan"));
-    assert!(text(&out.stderr).contains("/no/such/dir/x.svg"));
+    assert!(!text(&out.stdout).contains("makespan"));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("/no/such/dir/x.svg") && err.contains("/no/such/dir, which does not exist"),
+        "{err}"
+    );
 }
 
 #[test]
