@@ -14,7 +14,7 @@ use workcell::view;
 use workcell::wcp::remedy_json::legs_json;
 use workcell::wcp::report::{
     collision_json, configurations_json, rounds_json, schedule_json, sequences_json, summary,
-    waits_json, ResultJson,
+    waits_json, ResultJson, StagesJson,
 };
 use workcell::wcp::{
     self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SolveOptions, WcpGraph,
@@ -292,6 +292,10 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
     opts.sequencer.seed = args.seed;
     // An error leaves no half-drawn bar above its message.
     let prepared = wcp::prepare(&cell, &opts, &bar).inspect_err(|_| bar.finish())?;
+    if let Some(unfinished) = prepared.unfinished {
+        bar.finish();
+        return Ok(out_of_time(path, out.json, &unfinished, &prepared));
+    }
     let solved = wcp::solve(&cell, &prepared, &opts, &bar).inspect_err(|_| bar.finish())?;
     bar.finish();
     let mut written = Ok(());
@@ -360,6 +364,30 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
     let _ = std::io::stdout().write_all(text.as_bytes());
     written?;
     Ok(ExitCode::from(u8::from(!solved.collision_free)))
+}
+
+/// Reports a solve whose time limit ran out before a first schedule could be built: exit
+/// status 1, as for any solve that finds no collision-free schedule within its limits. No
+/// output file is written (there is no schedule to draw); the files there are kept.
+fn out_of_time(
+    path: &Path,
+    json: bool,
+    unfinished: &wcp::Unfinished,
+    prepared: &wcp::Prepared,
+) -> ExitCode {
+    let text = match json {
+        true => {
+            let doc = serde_json::json!({
+                "collision_free": false,
+                "failure": unfinished.to_string(),
+                "stages_ms": StagesJson::from(prepared.times),
+            });
+            serde_json::to_string_pretty(&doc).expect("a result serialises") + "\n"
+        }
+        false => format!("{}: NO schedule: {unfinished}\n", path.display()),
+    };
+    let _ = std::io::stdout().write_all(text.as_bytes());
+    ExitCode::from(1)
 }
 
 /// Evaluates given sequences; exit status 0 collision-free, 1 the schedule collides.

@@ -1,7 +1,7 @@
 //! Checking a whole scene: the pairs the broad phase keeps, in parallel, earliest contact
 //! first.
 
-use super::broad_phase::{candidate_pairs, PARALLEL_MIN_ROBOTS};
+use super::broad_phase::{candidate_pairs, pair_windows, Windows, PARALLEL_MIN_ROBOTS};
 use super::method::Scratch;
 use super::pair::{PairCheck, SharedLimit};
 use super::precision::check_precision;
@@ -185,7 +185,9 @@ pub struct PairStats {
 /// Checks every robot-robot and robot-obstacle pair of `scene` over its horizon.
 ///
 /// With 16 pairs or more, the broad phase ([`super::candidate_pairs`]) first drops the pairs
-/// whose swept bounding boxes stay δ apart; only the others are checked. Dropped pairs could
+/// whose swept bounding boxes stay δ apart; only the others are checked. A robot with a long
+/// trajectory is checked against each obstacle only where its boxes, chunk by chunk of its
+/// samples, meet the obstacle's (elsewhere the boxes prove the pair δ apart). Dropped pairs could
 /// never give a contact, so the verdict, the first contact and `safe_until` are those of
 /// checking all pairs; the counters, and so `certified`, only cover the pairs checked (a
 /// pruned pair's distance is proven ≥ δ, grazes included).
@@ -316,7 +318,15 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
     } else {
         candidate_pairs(scene, delta)
     };
-    let checks = run_pairs(scene, opts, &pairs, &settings);
+    // A robot with a long trajectory meets most obstacles only now and then: each such
+    // pair is checked in its windows, and dropped when it has none.
+    let (pairs, windows): (Vec<_>, Vec<_>) = pairs
+        .iter()
+        .copied()
+        .zip(pair_windows(scene, &pairs, delta))
+        .filter(|(_, w)| w.as_ref().is_none_or(|w| !w.is_empty()))
+        .unzip();
+    let checks = run_pairs(scene, opts, &pairs, windows, &settings);
     report(scene, opts, &settings, (all_pairs, &pairs), &checks)
 }
 
@@ -326,19 +336,21 @@ fn run_pairs<'s>(
     scene: &'s Scene,
     opts: &CheckOptions,
     pairs: &[(usize, usize)],
+    windows: Vec<Option<Windows>>,
     settings: &PairSettings,
 ) -> Vec<PairCheck<'s>> {
     let horizon = scene.horizon();
     let limit = SharedLimit::new();
     // Every pair is evaluated at the start before any runs on: a contact there stops all
     // of them at their first interval.
-    let start = |&(i, j): &(usize, usize)| {
+    let start = |(&(i, j), windows): (&(usize, usize), Option<Windows>)| {
         PairCheck::start(
             &scene.bodies[i],
             &scene.bodies[j],
             horizon,
             settings,
             &limit,
+            windows,
         )
     };
     let finish = |scratch: &mut Scratch, pair: &mut PairCheck| {
@@ -353,12 +365,12 @@ fn run_pairs<'s>(
     // Each pair's state stays where it started until the report is made.
     let mut checks: Vec<PairCheck>;
     if pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS {
-        checks = pairs.par_iter().map(start).collect();
+        checks = pairs.par_iter().zip(windows).map(start).collect();
         checks
             .par_iter_mut()
             .for_each_init(Scratch::default, finish);
     } else {
-        checks = pairs.iter().map(start).collect();
+        checks = pairs.iter().zip(windows).map(start).collect();
         let mut scratch = Scratch::default();
         checks.iter_mut().for_each(|p| finish(&mut scratch, p));
     }

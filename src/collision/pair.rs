@@ -1,6 +1,7 @@
 //! The check of one pair of bodies: its merged intervals in time order, each searched by the
 //! method (Feyeux & Landry, Table 1, by default).
 
+use super::broad_phase::Windows;
 use super::eta::Eta;
 use super::grid::MergedGrid;
 use super::method::{Method, Scratch};
@@ -64,9 +65,11 @@ pub(super) fn merged_grid(a: &Body, b: &Body, horizon: (f64, f64)) -> Vec<f64> {
     MergedGrid::new(a, b, horizon).map(|(t, _)| t).collect()
 }
 
-/// Checks one pair over the horizon, merged interval by merged interval, stopping at its
-/// first contact or at the first interval that starts after `limit`.
+/// Checks one pair over the horizon (in its `windows` only, when given), merged interval by
+/// merged interval, stopping at its first contact or at the first interval that starts
+/// after `limit`.
 #[cfg(test)]
+#[allow(clippy::too_many_arguments)]
 pub fn check_pair(
     a: &Body,
     b: &Body,
@@ -75,8 +78,9 @@ pub fn check_pair(
     s: &PairSettings,
     limit: &SharedLimit,
     scratch: &mut Scratch,
+    windows: Option<Windows>,
 ) -> PairOutcome {
-    PairCheck::start(a, b, horizon, s, limit).finish(method, s, limit, scratch)
+    PairCheck::start(a, b, horizon, s, limit, windows).finish(method, s, limit, scratch)
 }
 
 /// One pair's check: evaluated at the horizon's start by [`PairCheck::start`], run on by
@@ -97,6 +101,11 @@ pub struct PairCheck<'a> {
     log: Vec<(f64, Stats)>,
     /// What the check found, once it is over.
     found: Option<PairOutcome>,
+    /// Where the pair may come within δ (`None`: anywhere); merged intervals outside are
+    /// proven free by the broad phase's boxes and skipped.
+    windows: Option<Windows>,
+    /// The first window that has not ended before the interval being examined.
+    window: usize,
 }
 
 fn contact(limit: &SharedLimit, eta: &mut Eta, p: &Probe, interval: usize) -> Option<PairContact> {
@@ -138,6 +147,7 @@ impl<'a> PairCheck<'a> {
         horizon: (f64, f64),
         s: &PairSettings,
         limit: &SharedLimit,
+        windows: Option<Windows>,
     ) -> Self {
         let mut grid = MergedGrid::new(a, b, horizon);
         let mut eta = Eta::new(a, b, s.delta, s.walk);
@@ -157,6 +167,8 @@ impl<'a> PairCheck<'a> {
             reached: 0,
             log: Vec::new(),
             found,
+            windows,
+            window: 0,
         }
     }
 
@@ -195,6 +207,8 @@ impl<'a> PairCheck<'a> {
             left,
             reached,
             log,
+            windows,
+            window,
             ..
         } = self;
         let free = |safe_until| PairOutcome {
@@ -203,6 +217,8 @@ impl<'a> PairCheck<'a> {
             out_of_work: false,
         };
         let mut ahead = AHEAD.then(RunAhead::default);
+        // Whether `left` holds only its time: the intervals before were skipped.
+        let mut stale = false;
         loop {
             let afters = grid.afters();
             let Some(t) = grid.next_time() else {
@@ -213,11 +229,27 @@ impl<'a> PairCheck<'a> {
             if from > limit.get() {
                 return free(from);
             }
+            if let Some(w) = windows.as_deref() {
+                if !examines(w, window, left.t, t) {
+                    left.t = t;
+                    stale = true;
+                    continue;
+                }
+            }
             let k = *reached;
             if k > 1 {
                 log.push((from, *stats));
             }
             stats.intervals += 1;
+            if std::mem::take(&mut stale) {
+                // The skipped stretch ends here, proven free by the boxes: the interval
+                // starts from a fresh evaluation.
+                let fresh = eta.at(left.t, grid.poses_with(afters, left.t), stats);
+                if fresh.eta < s.delta {
+                    return stopped(limit, eta, Stop::Contact(fresh, fresh.t), k);
+                }
+                *left = fresh;
+            }
             if let Some(ahead) = &mut ahead {
                 match ahead.step(eta, grid, left, (afters, t), s, stats) {
                     Ok(true) => continue,
@@ -272,6 +304,17 @@ impl<'a> PairCheck<'a> {
     pub fn merged_intervals(&self) -> usize {
         self.reached + self.grid.clone().count_rest()
     }
+}
+
+/// Whether the merged interval `[t0, t1]` overlaps a window of `w` by more than a point:
+/// else it lies in chunks proven δ apart, its ends included. `next` is the first window
+/// that has not ended at `t0`, moved on as time goes forward.
+#[inline]
+fn examines(w: &[(f64, f64)], next: &mut usize, t0: f64, t1: f64) -> bool {
+    while w.get(*next).is_some_and(|&(_, end)| end <= t0) {
+        *next += 1;
+    }
+    w.get(*next).is_some_and(|&(start, _)| start < t1)
 }
 
 /// The joints at both ends of `[t0, t1]` of each body that is a link of an arm, given how

@@ -8,7 +8,7 @@ use super::prepare::StageTimes;
 use super::schedule::{route_nodes, Activity, BuildError, Collision, Delay, Schedule};
 use super::time_axis::{culprit, first_infinite_time, Stretch};
 use crate::cell::{number, Cell, InputError, PieceSpec, Sequences};
-use crate::collision::{check, CheckReport};
+use crate::collision::CheckReport;
 use crate::geometry::Vec2;
 use crate::planning::ArmModel;
 use crate::planning::{time_primitives, Primitive};
@@ -99,7 +99,7 @@ pub fn evaluate(
     }
     times.scheduling = clock.elapsed();
     let clock = Instant::now();
-    let report = check(&schedule.scene(cell), &opts.check);
+    let report = schedule.check(&schedule.scene(cell), &opts.check);
     times.checking = clock.elapsed();
     let collision = schedule.collision(cell, &report);
     let collision_free = collision.is_none() && report.verdict().is_certified_free();

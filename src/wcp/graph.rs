@@ -183,18 +183,23 @@ pub struct GraphFileArc {
 }
 
 /// Plans, for every task, the moves from the homes of its allowed robots, nearest robot
-/// first by `bounds`, until one succeeds (in parallel over the tasks). Returns the moves
-/// planned, as `(robot, 0, node)`.
-pub fn plan_reaches(
+/// first by `bounds`, until one succeeds (in parallel over the tasks), starting no task's
+/// moves once `deadline` has passed. Returns the moves planned, as `(robot, 0, node)`, and
+/// the number of tasks left without them.
+pub(crate) fn plan_reaches(
     cell: &Cell,
     store: &MoveStore,
     bounds: &Bounds,
     progress: &(dyn Fn() + Sync),
-) -> Vec<(usize, usize, usize)> {
+    deadline: Option<std::time::Instant>,
+) -> (Vec<(usize, usize, usize)>, usize) {
     use rayon::prelude::*;
-    let per_task: Vec<Vec<(usize, usize, usize)>> = (0..cell.tasks.len())
+    let per_task: Vec<Option<Vec<(usize, usize, usize)>>> = (0..cell.tasks.len())
         .into_par_iter()
         .map(|t| {
+            if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                return None;
+            }
             let node = task_node(t);
             let mut robots = cell.tasks[t].robots.clone();
             robots.sort_by(|&a, &b| {
@@ -212,10 +217,11 @@ pub fn plan_reaches(
                     break;
                 }
             }
-            planned
+            Some(planned)
         })
         .collect();
-    per_task.into_iter().flatten().collect()
+    let left = per_task.iter().filter(|p| p.is_none()).count();
+    (per_task.into_iter().flatten().flatten().collect(), left)
 }
 
 /// Refuses a cell with a task that none of its allowed robots can reach from home: exit

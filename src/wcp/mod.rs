@@ -48,7 +48,7 @@ pub use options::{
     ConfigurationChoice, Feedback, Planning, Remedies, SearchOptions, SolveOptions,
     AUTO_ALL_MAX_MOVES,
 };
-pub use prepare::{prepare, sequencer_error, Prepared, Progress, StageTimes};
+pub use prepare::{prepare, sequencer_error, Prepared, Progress, StageTimes, Unfinished};
 
 pub use schedule::{
     route_nodes, Activity, BuildError, Collision, Delay, RobotSchedule, Schedule, Segment,

@@ -66,6 +66,33 @@ pub struct StageTimes {
     pub checking: Duration,
 }
 
+/// What [`prepare`] left unplanned when the time limit ran out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Unfinished {
+    /// Moves (or, when planning for each task the move from its nearest robot's home,
+    /// tasks) planned.
+    pub done: usize,
+    /// Of how many.
+    pub total: usize,
+    /// Whether the count is of tasks (see `done`), else of moves.
+    pub tasks: bool,
+}
+
+impl std::fmt::Display for Unfinished {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let what = match self.tasks {
+            true => "tasks' moves from home",
+            false => "moves",
+        };
+        write!(
+            f,
+            "the time limit ran out while planning: {} of {} {what} planned and certified, \
+             and a schedule needs them all; give a longer --time-limit",
+            self.done, self.total
+        )
+    }
+}
+
 /// The cell's moves and bounds, ready for sequencing.
 pub struct Prepared {
     /// The one store of planned and certified moves.
@@ -77,6 +104,10 @@ pub struct Prepared {
     pub known: Arc<ExactArcs>,
     /// When [`SolveOptions::time_limit`] runs out.
     pub deadline: Option<Instant>,
+    /// When the time limit ran out before every move [`prepare`] plans was planned: how
+    /// many were left. No schedule can be built in the time given; [`solve`](crate::wcp::solve)
+    /// would plan the rest on demand, past the limit.
+    pub unfinished: Option<Unfinished>,
     /// Time spent so far.
     pub times: StageTimes,
 }
@@ -130,6 +161,7 @@ pub fn prepare(
         Planning::Lazy => false,
         Planning::All => true,
     };
+    let unfinished;
     let pairs: Vec<(usize, usize, usize)> = if plan_all {
         let mut pairs = Vec::with_capacity(all_moves);
         for r in 0..cell.robots.len() {
@@ -139,13 +171,32 @@ pub fn prepare(
             }
         }
         progress.planning(pairs.len());
-        moves.plan_all(&pairs, &|| progress.move_planned());
-        pairs
+        let planned = plan_until(&moves, &pairs, deadline, &|| progress.move_planned());
+        let done = planned.len();
+        let total = pairs.len();
+        unfinished = (done < total).then_some(Unfinished {
+            done,
+            total,
+            tasks: false,
+        });
+        planned
     } else {
         progress.planning(cell.tasks.len());
-        plan_reaches(cell, &moves, &bounds, &|| progress.move_planned())
+        let tick = || progress.move_planned();
+        let (planned, left) = plan_reaches(cell, &moves, &bounds, &tick, deadline);
+        let total = cell.tasks.len();
+        unfinished = (left > 0).then_some(Unfinished {
+            done: total - left,
+            total,
+            tasks: true,
+        });
+        planned
     };
-    check_reachable(cell, &moves)?;
+    // Out of time, the tasks not reached yet stay unknown: finding whether they can be
+    // reached is the planning that did not fit.
+    if unfinished.is_none() {
+        check_reachable(cell, &moves)?;
+    }
     let mut known: ExactArcs = vec![Default::default(); cell.robots.len()];
     for &(r, a, b) in &pairs {
         let d = moves.duration(r, a, b).unwrap_or(f64::INFINITY);
@@ -158,8 +209,29 @@ pub fn prepare(
         bounds,
         known: Arc::new(known),
         deadline,
+        unfinished,
         times,
     })
+}
+
+/// Plans `pairs` in parallel, starting none once `deadline` has passed; the pairs planned.
+fn plan_until(
+    moves: &MoveStore,
+    pairs: &[(usize, usize, usize)],
+    deadline: Option<Instant>,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<(usize, usize, usize)> {
+    use rayon::prelude::*;
+    let late = || deadline.is_some_and(|d| Instant::now() >= d);
+    let planned = pairs.par_iter().map(|&(r, a, b)| {
+        if late() {
+            return None;
+        }
+        let _ = moves.duration(r, a, b);
+        progress();
+        Some((r, a, b))
+    });
+    planned.flatten().collect()
 }
 
 impl Prepared {
@@ -188,6 +260,7 @@ impl Prepared {
             bounds,
             known: Arc::new(known),
             deadline: self.deadline,
+            unfinished: self.unfinished,
             times: self.times,
         }
     }

@@ -102,7 +102,7 @@ fn time_limit_progress_and_exported_graph() {
         "--planning",
         "lazy",
         "--time-limit",
-        "0.001",
+        "5",
         "--export-graph",
         graph.to_str().unwrap(),
         cell.to_str().unwrap(),
@@ -162,4 +162,38 @@ fn progress_reports_the_best_collision_free_makespan() {
     );
     // The blind plan (shorter, colliding) is not reported as the best any more.
     assert!(result["blind_makespan"].as_f64().unwrap() < makespan);
+}
+
+/// A time limit that runs out while the moves are planned: exit 1 at once, saying how far
+/// planning got, and no output file replaced (there is no schedule to draw).
+#[test]
+fn a_time_limit_spent_in_planning_is_reported_not_overrun() {
+    let dir = temp_dir_absent("cli-scale", "planning-limit");
+    let cell = generate(&dir, "2", "30", "4", "1");
+    let svg = dir.join("kept.svg");
+    std::fs::write(&svg, "before").unwrap();
+    for json in [false, true] {
+        let mut args = vec!["solve", cell.to_str().unwrap(), "--time-limit", "1e-9"];
+        args.extend(["--svg", svg.to_str().unwrap()]);
+        if json {
+            args.push("--json");
+        }
+        let out = workcell(&args);
+        assert_eq!(out.status.code(), Some(1), "{out:?}");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            stdout.contains("time limit ran out while planning"),
+            "{stdout}"
+        );
+        if json {
+            let doc: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+            assert_eq!(doc["collision_free"], false);
+        } else {
+            assert!(
+                stdout.contains("NO schedule: ") && stdout.contains(" planned and certified"),
+                "{stdout}"
+            );
+        }
+        assert_eq!(std::fs::read_to_string(&svg).unwrap(), "before");
+    }
 }

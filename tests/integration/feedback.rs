@@ -391,3 +391,22 @@ fn remembering_changes_nothing_but_the_time() {
     let legs = |s: &Solved| format!("{:?}", s.legs);
     assert_eq!(legs(&remembered), legs(&asked_again));
 }
+
+/// A first schedule the checker can neither prove free nor show colliding (its work budget
+/// of one evaluation per pair runs out) is an answer that says so, from either feedback,
+/// never a panic.
+#[test]
+fn a_first_schedule_left_undecided_is_reported_not_a_panic() {
+    let cell = shipped_cell("paper-cell.json");
+    for feedback in [Feedback::Search, Feedback::Greedy] {
+        let mut opts = SolveOptions {
+            feedback,
+            ..SolveOptions::default()
+        };
+        opts.check.max_work_per_pair = 1;
+        let solved = solve_with(&cell, &opts);
+        let failure = solved.failure.as_deref().unwrap_or_default();
+        assert!(!solved.collision_free, "{feedback:?}");
+        assert!(failure.contains("work budget"), "{feedback:?}: {failure}");
+    }
+}

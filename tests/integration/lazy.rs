@@ -152,6 +152,32 @@ fn a_tiny_time_limit_still_returns_a_certified_plan() {
 }
 
 #[test]
+fn a_time_limit_spent_in_planning_leaves_it_unfinished_and_says_so() {
+    let cell = cell(2, 30, 4, 1);
+    for planning in [Planning::Lazy, Planning::All] {
+        let opts = SolveOptions {
+            time_limit: Some(Duration::from_nanos(1)),
+            ..opts(planning)
+        };
+        let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+        let left = prepared.unfinished.expect("no time to plan");
+        assert!(left.done < left.total, "{planning:?}: {left:?}");
+        assert_eq!(left.tasks, planning == Planning::Lazy);
+        // Tasks, or moves between every two nodes of each robot.
+        match planning {
+            Planning::Lazy => assert_eq!(left.total, 30),
+            _ => assert!(left.total > 2 * 30, "{left:?}"),
+        }
+        assert!(left
+            .to_string()
+            .contains("time limit ran out while planning"));
+        // Without a limit, nothing is left.
+        let whole = wcp::prepare(&cell, &self::opts(planning), &()).unwrap();
+        assert_eq!(whole.unfinished, None);
+    }
+}
+
+#[test]
 fn lazy_granular_sequencing_is_the_same_on_1_2_and_4_threads() {
     let cell = cell(5, 220, 6, 2);
     let mut opts = opts(Planning::Lazy);

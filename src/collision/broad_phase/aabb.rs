@@ -57,6 +57,14 @@ impl Aabb {
         }
     }
 
+    /// The box that holds both.
+    pub(super) fn hull(&self, o: &Aabb) -> Aabb {
+        let mut h = *self;
+        h.add(&crate::geometry::Vec2::new(o.lo[0], o.lo[1]));
+        h.add(&crate::geometry::Vec2::new(o.hi[0], o.hi[1]));
+        h
+    }
+
     /// Grown by `by` on every side, plus [`SLACK`] relative to `by` and to `scale`, the
     /// magnitude of the coordinates the box was computed from.
     pub(super) fn grown(self, by: f64, scale: f64) -> Aabb {

@@ -11,6 +11,7 @@
 mod aabb;
 mod arms;
 mod grid;
+mod windows;
 
 use super::{Body, Scene};
 use crate::geometry::{Posed, Vec2};
@@ -21,6 +22,7 @@ use grid::meeting;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Arc;
+pub(super) use windows::{pair_windows, Windows};
 
 /// At most this many windows: beyond it the boxes hardly shrink, while each window costs a
 /// sort of the grid entries.
@@ -127,16 +129,22 @@ fn tracks_and_fixed(bodies: &[Body], half: f64) -> TracksAndFixed<'_> {
         match &b.motion {
             Motion::Sampled(tr) => tracks.push((i, tr.samples())),
             Motion::Link(_) => {}
-            // Obstacles never move: one box each, from their vertices in world position.
-            Motion::Fixed(p) => {
-                let posed = Posed::new(&b.shape, p.pos.x, p.pos.y, p.theta);
-                let mut hull = Aabb::EMPTY;
-                (0..posed.len()).for_each(|k| hull.add(&posed.vertex(k)));
-                fixed.push((i, hull.grown(half, p.pos.amax() + b.shape.radius())));
-            }
+            Motion::Fixed(_) => fixed.push((i, fixed_box(b, half))),
         }
     }
     (tracks, fixed)
+}
+
+/// The box of an obstacle (it never moves), from its vertices in world position, grown by
+/// `half`; an empty box for a body that moves.
+fn fixed_box(b: &Body, half: f64) -> Aabb {
+    let Motion::Fixed(p) = &b.motion else {
+        return Aabb::EMPTY;
+    };
+    let posed = Posed::new(&b.shape, p.pos.x, p.pos.y, p.theta);
+    let mut hull = Aabb::EMPTY;
+    (0..posed.len()).for_each(|k| hull.add(&posed.vertex(k)));
+    hull.grown(half, p.pos.amax() + b.shape.radius())
 }
 
 /// Window ends, non-decreasing from t0 to t1 exactly; interpolated, not t0 + f·(t1 − t0),

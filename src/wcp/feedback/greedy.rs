@@ -6,7 +6,7 @@
 use super::outcome::describe;
 use super::outcome::{build, Iteration, Remedy, Solved};
 use crate::cell::{Cell, InputError};
-use crate::collision::{check, CheckReport, Verdict};
+use crate::collision::{CheckReport, Verdict};
 use crate::wcp::legs::Legs;
 use crate::wcp::moves::MoveStore;
 use crate::wcp::options::SolveOptions;
@@ -109,7 +109,7 @@ impl Greedy<'_> {
         let schedule = build(self.cell, &self.routes, &legs, &self.prepared.moves)?;
         self.times.scheduling += clock.elapsed();
         let clock = Instant::now();
-        let report = check(&schedule.scene(self.cell), &self.opts.check);
+        let report = schedule.check(&schedule.scene(self.cell), &self.opts.check);
         self.times.checking += clock.elapsed();
         let collision = schedule.collision(self.cell, &report);
         self.progress.iteration(
@@ -264,7 +264,7 @@ fn shortest_delay(
         let mut trial = delays.to_vec();
         trial.push(delay);
         let schedule = build(cell, routes, &Delay::legs(cell.robots.len(), &trial), moves)?;
-        let report = check(&schedule.pair_scene(cell, full.robot, other), &opts.check);
+        let report = schedule.check(&schedule.pair_scene(cell, full.robot, other), &opts.check);
         // The pair must not meet while the conflicting activity lasts, nor later with one of
         // them already home for good: no wait could separate them then.
         let cleared = match report.verdict() {

@@ -36,7 +36,7 @@ use super::outcome::{build, Iteration, Remedy, Solved};
 use super::reconfigure::{self, reconfigurations, Reconfig};
 use super::remedies::{candidates, Child, Ctx, View};
 use crate::cell::{Cell, InputError};
-use crate::collision::{check, CheckReport};
+use crate::collision::CheckReport;
 use crate::wcp::legs::{default_legs, Legs};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
@@ -288,7 +288,12 @@ impl Search<'_> {
         if let Some(id) = self.best {
             return (id, None);
         }
-        let id = self.furthest.expect("the root collides");
+        // No node collides and none is certified: the first schedule itself could be
+        // neither proven free nor shown to collide (a graze, or the checker's work budget).
+        let Some(id) = self.furthest else {
+            let report = &self.nodes[0].outcome.as_ref().expect("checked").report;
+            return (0, Some(super::uncertified(report)));
+        };
         let c = self.collision(id).expect("a colliding node");
         let max_iterations = self.opts.max_iterations;
         let why = match stop {
@@ -353,7 +358,7 @@ impl Search<'_> {
             .par_iter()
             .map(|&id| {
                 let schedule = Schedule::of(self.nodes[id].robots.clone());
-                let report = check(&schedule.scene(cell), check_opts);
+                let report = schedule.check(&schedule.scene(cell), check_opts);
                 let collision = schedule.collision(cell, &report);
                 Outcome { report, collision }
             })
