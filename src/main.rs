@@ -35,7 +35,7 @@ enum Command {
     /// Exit status: 0 collision-free, 1 collision found, 2 unusable input, 3 unresolved
     /// (a pair used its work budget with neither a proof nor a collision).
     Check {
-        /// Scene file (JSON, see README: "Scene file").
+        /// Scene file (JSON, see docs/formats.md: "Scene file").
         scene: PathBuf,
         /// Print the result as JSON on stdout.
         #[arg(long)]
@@ -74,7 +74,7 @@ enum Command {
     ///
     /// Exit status: 0 collision-free schedule found, 1 none found, 2 unusable input.
     Solve {
-        /// Cell file (JSON, see README: "Cell file").
+        /// Cell file (JSON, see docs/formats.md: "Cell file").
         cell: PathBuf,
         #[command(flatten)]
         out: cli::solve::Outputs,
@@ -115,7 +115,7 @@ enum Command {
         "Draw the cell, the paths and the schedule's first collision, if any, as an SVG picture"
     )))]
     Evaluate {
-        /// Cell file (JSON, see README: "Cell file").
+        /// Cell file (JSON, see docs/formats.md: "Cell file").
         cell: PathBuf,
         /// Sequences file: `{"R1": ["weld-3", "weld-1"], ...}` or a whole solve result.
         sequences: PathBuf,
@@ -154,7 +154,7 @@ enum Command {
     /// Exit status: 0 written, 2 an impossible request, or the folder or a file cannot be
     /// written.
     Generate {
-        /// Family of scenes or cells (see README: "`workcell generate`"): `all` for every
+        /// Family of scenes or cells (see docs/cli.md: "`workcell generate`"): `all` for every
         /// family of scenes, `conflict` for every family of conflict cells, `cell` for a cell
         /// at the size of a line, `scara` for a cell of SCARA arms.
         #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(cli::generate::kind_names()))]

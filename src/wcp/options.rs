@@ -143,7 +143,7 @@ pub struct Remedies {
     pub step_aside: bool,
     /// An arm takes another of its configurations at the task of a collision (off by
     /// default: up to six more children per collision with an arm widen the search more
-    /// than they pay; see the README).
+    /// than they pay; see docs/benchmarks.md).
     pub reconfigure: bool,
 }
 

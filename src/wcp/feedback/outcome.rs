@@ -169,7 +169,7 @@ impl Solved {
     /// ```
     /// use workcell::wcp::{prepare, solve, Feedback, SolveOptions};
     /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
-    /// // The greedy loop ends by making R2 wait at home (README, "feedback cell").
+    /// // The greedy loop ends by making R2 wait at home (docs/solver.md, "feedback cell").
     /// let opts = SolveOptions { feedback: Feedback::Greedy, ..SolveOptions::default() };
     /// let solved = solve(&cell, &prepare(&cell, &opts, &())?, &opts, &())?;
     /// let delays = solved.delays();
