@@ -108,6 +108,10 @@ pub struct Prepared {
     /// many were left. No schedule can be built in the time given; [`solve`](crate::wcp::solve)
     /// would plan the rest on demand, past the limit.
     pub unfinished: Option<Unfinished>,
+    /// The time a plan's moves still to plan are expected to take, at the pace [`prepare`]
+    /// planned its own: the sequencer stops searching that much before the deadline, so that
+    /// planning its plan ends within the limit. Zero when every move was planned.
+    pub(crate) reserve: Duration,
     /// Time spent so far.
     pub times: StageTimes,
 }
@@ -204,12 +208,22 @@ pub fn prepare(
         known[r].insert((b, a), d);
     }
     times.planning = clock.elapsed();
+    // A lazy plan needs about one move per task and per robot that was not planned here.
+    let reserve = match (plan_all, pairs.len()) {
+        (true, _) | (false, 0) => Duration::ZERO,
+        (false, planned) => {
+            let moves = (cell.tasks.len() + cell.robots.len()) as u32;
+            let pace = times.planning / u32::try_from(planned).unwrap_or(u32::MAX);
+            pace.checked_mul(moves).unwrap_or(Duration::MAX)
+        }
+    };
     Ok(Prepared {
         moves,
         bounds,
         known: Arc::new(known),
         deadline,
         unfinished,
+        reserve,
         times,
     })
 }
@@ -261,6 +275,7 @@ impl Prepared {
             known: Arc::new(known),
             deadline: self.deadline,
             unfinished: self.unfinished,
+            reserve: self.reserve,
             times: self.times,
         }
     }

@@ -88,7 +88,12 @@ pub fn sequence_with(
         .map(|r| cell.tasks.iter().map(|t| t.robots.contains(&r)).collect())
         .collect();
     let mut seq_opts = opts.sequencer.clone();
-    seq_opts.deadline = prepared.deadline;
+    // The search stops early enough to plan its plan's moves within the limit; the first
+    // plan is built in full until the limit itself.
+    seq_opts.construction_deadline = prepared.deadline;
+    seq_opts.deadline = prepared
+        .deadline
+        .map(|d| d.checked_sub(prepared.reserve).unwrap_or_else(Instant::now));
     let mut known: Arc<ExactArcs> = prepared.known.clone();
     let mut start: Option<Vec<Vec<usize>>> = start.map(<[_]>::to_vec);
     let mut best: Option<Solution> = None;

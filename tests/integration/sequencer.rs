@@ -380,3 +380,44 @@ fn valid_plans_from_small_to_hall_sized_instances() {
         assert_valid(&inst, &[], &sol);
     }
 }
+
+/// A deadline already past: the granular search builds its first plan with near insertions
+/// and stops its descents at once, and still returns a valid plan of every task. With only
+/// the search's deadline past, the first plan is the full cheapest-insertion construction,
+/// valid too.
+#[test]
+fn a_past_deadline_still_gives_a_whole_valid_plan() {
+    use std::time::Instant;
+    use workcell::wcp::sequencer::GRANULAR_FROM_TASKS;
+    let inst = random_instance(7, 3, GRANULAR_FROM_TASKS + 50, 0.6, 0);
+    let free = SequencerOptions {
+        iterations: 5,
+        restarts: 1,
+        ..SequencerOptions::default()
+    };
+    let unhurried = solve(&inst, &[], &free).unwrap();
+    assert_valid(&inst, &[], &unhurried);
+    let past = Some(Instant::now());
+    let hurried = SequencerOptions {
+        deadline: past,
+        construction_deadline: past,
+        ..free.clone()
+    };
+    let sol = solve(&inst, &[], &hurried).unwrap();
+    assert_valid(&inst, &[], &sol);
+    // Hurried, it is worse here: it neither inserted where it costs least nor descended.
+    assert!(
+        sol.makespan > unhurried.makespan,
+        "{} vs {}",
+        sol.makespan,
+        unhurried.makespan
+    );
+    // Only the search stopped: the first plan is the full construction, not descended.
+    let built = SequencerOptions {
+        deadline: past,
+        ..free.clone()
+    };
+    let sol_built = solve(&inst, &[], &built).unwrap();
+    assert_valid(&inst, &[], &sol_built);
+    assert!(sol_built.makespan >= unhurried.makespan);
+}

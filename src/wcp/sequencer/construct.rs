@@ -5,6 +5,7 @@ use super::terms::task_node;
 use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use std::time::Instant;
 
 use super::model::Model;
 use super::plan::{Move, Obj, Plan, Scratch};
@@ -61,10 +62,33 @@ fn near_insertion(model: &Model, plan: &Plan, t: usize, scratch: &mut Scratch) -
     best.1.expect("every task has a capable robot")
 }
 
+/// Tasks inserted between two looks at the clock.
+const CLOCK_EVERY: usize = 64;
+
 /// Inserts the tasks of `order`, one after the other, where they cost least.
 pub(super) fn insert_all(model: &Model, plan: &mut Plan, order: &[usize], scratch: &mut Scratch) {
-    for &t in order {
-        let mv = best_insertion(model, plan, t, scratch);
+    insert_all_until(model, plan, order, scratch, None);
+}
+
+/// [`insert_all`], but once `deadline` has passed a granular model inserts the tasks left
+/// at the places [`near_insertion`] looks: cheapest insertion tries every place of every
+/// route, tasks × places in all, and a plan in time is worth more than a better one late.
+pub(super) fn insert_all_until(
+    model: &Model,
+    plan: &mut Plan,
+    order: &[usize],
+    scratch: &mut Scratch,
+    deadline: Option<Instant>,
+) {
+    let mut late = false;
+    for (k, &t) in order.iter().enumerate() {
+        if !late && k.is_multiple_of(CLOCK_EVERY) && model.neighbours.is_some() {
+            late = deadline.is_some_and(|d| Instant::now() >= d);
+        }
+        let mv = match late {
+            true => near_insertion(model, plan, t, scratch),
+            false => best_insertion(model, plan, t, scratch),
+        };
         plan.apply(model, &mv, scratch);
     }
 }

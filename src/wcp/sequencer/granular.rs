@@ -9,10 +9,14 @@
 
 use super::terms::{node_task, task_node};
 use std::collections::VecDeque;
+use std::time::Instant;
 
 use super::model::Model;
 use super::offers::{offer_reverse, offer_swap, Cut, Pick};
 use super::plan::{Plan, Scratch};
+
+/// Tasks looked at between two looks at the clock.
+const LOOKS_PER_CLOCK: usize = 64;
 
 /// The tasks still to look at, in first-in first-out order.
 pub(super) struct Active {
@@ -58,9 +62,16 @@ pub(super) fn local_search(
     plan: &mut Plan,
     scratch: &mut Scratch,
     active: &mut Active,
+    deadline: Option<Instant>,
 ) {
     let mut critical = plan.critical();
+    let mut looked = 0usize;
     while let Some(t) = active.pop() {
+        // Every plan on the way is whole: past the deadline, the descent stops where it is.
+        looked += 1;
+        if looked.is_multiple_of(LOOKS_PER_CLOCK) && deadline.is_some_and(|d| Instant::now() >= d) {
+            return;
+        }
         let mut pick = Pick::new(plan);
         for len in 1..=3 {
             shifts(model, plan, scratch, &mut pick, t, len);

@@ -7,7 +7,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::construct::{initial_order, insert_all, ruin_recreate};
+use super::construct::{initial_order, insert_all_until, ruin_recreate};
 use super::granular::{self, Active};
 use super::local_search::local_search;
 use super::model::Model;
@@ -40,7 +40,13 @@ pub(super) fn search(
     let shared = match &start {
         Start::All(plan) => {
             let mut plan = plan.clone();
-            descend(model, &mut plan, &mut Scratch::default(), None);
+            descend(
+                model,
+                &mut plan,
+                &mut Scratch::default(),
+                None,
+                opts.deadline,
+            );
             Some(plan)
         }
         Start::Fresh(_) => None,
@@ -87,7 +93,14 @@ const GRANULAR_RECORD_SLACK: f64 = 0.005;
 
 /// A descent: the full neighbourhoods, or the granular ones from the `touched` nodes (all
 /// tasks when `None`).
-fn descend(model: &Model, plan: &mut Plan, scratch: &mut Scratch, touched: Option<&[usize]>) {
+/// A granular descent stops at `deadline` (the plan is whole at every step).
+fn descend(
+    model: &Model,
+    plan: &mut Plan,
+    scratch: &mut Scratch,
+    touched: Option<&[usize]>,
+    deadline: Option<Instant>,
+) {
     if model.neighbours.is_none() {
         return local_search(model, plan, scratch);
     }
@@ -101,7 +114,7 @@ fn descend(model: &Model, plan: &mut Plan, scratch: &mut Scratch, touched: Optio
             active
         }
     };
-    granular::local_search(model, plan, scratch, &mut active);
+    granular::local_search(model, plan, scratch, &mut active, deadline);
 }
 
 fn restart(
@@ -121,12 +134,13 @@ fn restart(
         Begin::Built => {
             let mut plan = Plan::empty(model);
             let order = initial_order(model, k, &mut rng);
-            insert_all(model, &mut plan, &order, &mut scratch);
+            let hurry = opts.construction_deadline.or(opts.deadline);
+            insert_all_until(model, &mut plan, &order, &mut scratch, hurry);
             (plan, false)
         }
     };
     if !descended {
-        descend(model, &mut current, &mut scratch, None);
+        descend(model, &mut current, &mut scratch, None, opts.deadline);
     }
     let mut best = current.clone();
     on_best(best.obj().makespan);
@@ -146,7 +160,13 @@ fn restart(
         since += 1;
         let mut candidate = current.clone();
         let touched = ruin_recreate(model, &mut candidate, &mut rng, &mut scratch);
-        descend(model, &mut candidate, &mut scratch, Some(&touched));
+        descend(
+            model,
+            &mut candidate,
+            &mut scratch,
+            Some(&touched),
+            opts.deadline,
+        );
         if candidate.obj().better(&best.obj()) {
             best = candidate.clone();
             on_best(best.obj().makespan);

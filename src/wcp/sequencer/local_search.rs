@@ -224,7 +224,13 @@ mod granular_tests {
             let mut plan = Plan::empty(&model);
             let order: Vec<usize> = (0..tasks).collect();
             insert_all(&model, &mut plan, &order, &mut scratch);
-            local_search(&model, &mut plan, &mut scratch, &mut Active::all(&model));
+            local_search(
+                &model,
+                &mut plan,
+                &mut scratch,
+                &mut Active::all(&model),
+                None,
+            );
             plan.assert_consistent(&model);
             for _ in 0..3 {
                 let touched = ruin_recreate(&model, &mut plan, &mut rng, &mut scratch);
@@ -233,7 +239,7 @@ mod granular_tests {
                 for node in touched {
                     active.push_node(node);
                 }
-                local_search(&model, &mut plan, &mut scratch, &mut active);
+                local_search(&model, &mut plan, &mut scratch, &mut active, None);
                 plan.assert_consistent(&model);
             }
         }

@@ -72,6 +72,10 @@ pub struct SequencerOptions {
     /// When given, the local search stops at this instant and returns the best plan found so
     /// far (the result then depends on the machine's speed).
     pub deadline: Option<Instant>,
+    /// When given, the first plan of a restart is built faster once this instant has passed
+    /// (a granular model then inserts the tasks left near their neighbours): the solve's own
+    /// limit, while `deadline` leaves time to plan the plan found.
+    pub construction_deadline: Option<Instant>,
 }
 
 impl Default for SequencerOptions {
@@ -85,6 +89,7 @@ impl Default for SequencerOptions {
             iterations: 400,
             exact_limit: 10_000_000,
             deadline: None,
+            construction_deadline: None,
         }
     }
 }
