@@ -30,6 +30,8 @@ mod common;
 mod compare;
 mod corpus;
 mod feedback;
+#[cfg(all(feature = "cli", unix))]
+mod fuzz_outputs;
 mod generate;
 mod layers;
 mod lazy;
