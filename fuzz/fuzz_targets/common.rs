@@ -1,6 +1,9 @@
 //! What the targets share: the invariant and mutations of `tests/fuzz_support`, and the
 //! feedback cell that sequences are read against.
 
+// Each target uses part of this.
+#![allow(dead_code)]
+
 #[path = "../../tests/fuzz_support/mod.rs"]
 pub mod support;
 

@@ -411,3 +411,101 @@ fn reshaped(mut items: Vec<Value>, rng: &mut impl RngCore) -> Vec<Value> {
         }
     }
 }
+
+/// The markers a name could forge in a picture or a page.
+#[cfg(feature = "cli")]
+fn markers(text: &str) -> [usize; 4] {
+    ["<script", "</script", "<!--", "]]>"].map(|m| text.matches(m).count())
+}
+
+/// A scene of two robots crossing past an obstacle, its three bodies named `names` (cycled),
+/// as a file's text.
+#[cfg(feature = "cli")]
+fn named_scene(names: [&str; 3]) -> String {
+    let square = [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]];
+    let doc = serde_json::json!({
+        "delta": 0.01,
+        "robots": [
+            {"name": names[0], "shape": square,
+             "trajectory": [{"t": 0, "x": 0, "y": 0}, {"t": 2, "x": 4, "y": 0}]},
+            {"name": names[1], "shape": square,
+             "trajectory": [{"t": 0, "x": 2, "y": -2}, {"t": 2, "x": 2, "y": 2}]},
+        ],
+        "obstacles": [{"name": names[2], "shape": [[5, 2], [6, 2], [6, 3], [5, 3]]}],
+    });
+    doc.to_string()
+}
+
+/// Names as a user could write them, read, checked, and drawn into the still picture and
+/// the page: either refused naming the body's field (control characters, empty, too long,
+/// repeated), or drawn with no name raw in the picture (`<` and `&` escaped) or the page's
+/// data (`<` escaped), no markup forged (the markers of a page with plain names), and no
+/// control character anywhere.
+#[cfg(feature = "cli")]
+pub fn exercise_names(names: [&str; 3]) {
+    use workcell::{collision::check, view};
+    let file = Path::new("names.json");
+    let draw = |text: &str| -> Result<[String; 2], InputError> {
+        let loaded = parse_scene(text, file)?;
+        let report = check(&loaded.scene, &CheckOptions::default());
+        let model = view::Model::of_check(file, &loaded.scene, &report);
+        Ok([view::picture(&model), view::html(&model)])
+    };
+    let plain = draw(&named_scene(["A", "B", "C"])).expect("plain names");
+    let fields = ["robots[0].name", "robots[1].name", "obstacles[0].name"];
+    match draw(&named_scene(names)) {
+        Err(e) => {
+            assert_eq!(e.file, file, "{e}");
+            assert!(
+                fields.contains(&e.field.as_str()),
+                "names no name field: {e}"
+            );
+        }
+        Ok(drawn) => {
+            for (k, (text, plain)) in drawn.iter().zip(&plain).enumerate() {
+                assert_eq!(
+                    markers(text),
+                    markers(plain),
+                    "a name forged markup: {names:?}"
+                );
+                assert!(
+                    !text
+                        .chars()
+                        .any(|c| c.is_control() && !matches!(c, '\n' | '\t' | '\r')),
+                    "a control character in an output: {names:?}"
+                );
+                // Escapes (`&lt;`) read as nothing; a name whose raw text a plain drawing
+                // holds anyway (`<`, `</`) proves nothing.
+                let (text, plain) = (without_entities(text), without_entities(plain));
+                let raw: &[char] = if k == 0 { &['<', '&'] } else { &['<'] };
+                let telling = |n: &&&str| n.contains(raw) && !plain.contains(**n);
+                for name in names.iter().filter(telling) {
+                    assert!(!text.contains(name), "{name:?} raw in an output");
+                }
+            }
+        }
+    }
+}
+
+/// `text` with its character and entity references (`&amp;`, `&#60;`) taken out.
+#[cfg(feature = "cli")]
+fn without_entities(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find('&') {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 1..];
+        let len = after
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '#'))
+            .unwrap_or(after.len());
+        match after[len..].starts_with(';') && len > 0 {
+            true => rest = &after[len + 1..],
+            false => {
+                out.push('&');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
