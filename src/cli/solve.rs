@@ -134,7 +134,7 @@ impl Lines {
         let best = if certified.is_finite() {
             format!("best makespan {certified:.3}, collision-free")
         } else if best.is_finite() {
-            format!("best makespan {best:.3}, not checked")
+            format!("best makespan {best:.3}, the sequencer's estimate (not checked)")
         } else {
             "best makespan -".to_owned()
         };

@@ -187,6 +187,11 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
 pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
+    // A duration to three decimals, unless that would read as none.
+    let seconds = |d: f64| match d > 0.0 && d < 0.0005 {
+        true => format!("{d:.1e}"),
+        false => format!("{d:.3}"),
+    };
     let Some(leg) = r.on else {
         return "re-sequenced".to_owned();
     };
@@ -194,10 +199,14 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
     let on = move_name(cell, leg.robot, leg.nodes);
     match &r.kind {
         RemedyKind::Resequence => "re-sequenced".to_owned(),
-        RemedyKind::Wait { duration } => format!("{who} waits {duration:.3} before its {on}"),
+        RemedyKind::Wait { duration } => {
+            format!("{who} waits {} before its {on}", seconds(*duration))
+        }
         RemedyKind::Pause { at, duration } => format!(
-            "{who} pauses {duration:.3} at ({:.3}, {:.3}) on its {on}",
-            at.x, at.y
+            "{who} pauses {} at ({:.3}, {:.3}) on its {on}",
+            seconds(*duration),
+            at.x,
+            at.y
         ),
         RemedyKind::Slow { factor } => format!("{who} makes its {on} {factor:.3} times slower"),
         RemedyKind::Detour { around, path } => format!(
@@ -206,8 +215,10 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
             path.len()
         ),
         RemedyKind::StepAside { park, duration } => format!(
-            "{who} steps aside to ({:.3}, {:.3}) for {duration:.3} on its {on}",
-            park.pos.x, park.pos.y
+            "{who} steps aside to ({:.3}, {:.3}) for {} on its {on}",
+            park.pos.x,
+            park.pos.y,
+            seconds(*duration)
         ),
         RemedyKind::Reconfigure { task, joints } => {
             let angles: Vec<String> = joints.iter().map(|a| format!("{a:.3}")).collect();

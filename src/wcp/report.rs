@@ -378,6 +378,20 @@ pub fn schedule_json<'a>(
     (sequences, timeline)
 }
 
+/// An interval of the schedule as the summary prints it: `[2.44-4.44]`, or the start and the
+/// duration when both ends print alike (`[7.81, 0.002 s]`, `[7.81, 0 s]`).
+fn span(start: f64, end: f64) -> String {
+    let (a, b) = (format!("{start:.2}"), format!("{end:.2}"));
+    if a != b {
+        return format!("[{a}-{b}]");
+    }
+    match end - start {
+        d if d <= 0.0 => format!("[{a}, 0 s]"),
+        d if d < 0.0005 => format!("[{a}, {d:.1e} s]"),
+        d => format!("[{a}, {d:.3} s]"),
+    }
+}
+
 /// The human summary: makespan, each robot's sequence with times, the rounds of the loop and
 /// the time per stage.
 ///
@@ -409,31 +423,52 @@ pub fn summary(
         }
         let mut steps = Vec::new();
         for seg in &s.segments {
-            match seg.activity {
-                Activity::Work(t) => steps.push(format!(
-                    "{} [{:.2}-{:.2}]",
-                    cell.tasks[t].name, seg.start, seg.end
-                )),
+            let what = match seg.activity {
+                Activity::Work(t) => cell.tasks[t].name.clone(),
                 Activity::Wait(_) | Activity::Pause { .. } | Activity::Park { .. } => {
-                    steps.push(format!(
-                        "{} [{:.2}-{:.2}]",
-                        seg.activity.describe(cell, r),
-                        seg.start,
-                        seg.end
-                    ))
+                    seg.activity.describe(cell, r)
                 }
-                _ => {}
-            }
+                _ => continue,
+            };
+            steps.push(format!("{what} {}", span(seg.start, seg.end)));
         }
         let _ = writeln!(out, "{} -> home at {:.2}", steps.join(" -> "), s.end);
     }
-    for (k, it) in rounds.iter().enumerate() {
-        let what = match (&it.collision, &it.remedy) {
-            (None, _) => "collision-free".to_owned(),
-            (Some(c), Some(r)) => format!("{}; {}", describe(cell, c), remedy_text(cell, r)),
-            (Some(c), None) => format!("{}; not fixed", describe(cell, c)),
+    let lines: Vec<String> = rounds
+        .iter()
+        .map(|it| {
+            let what = match (&it.collision, &it.remedy) {
+                (None, _) => "collision-free".to_owned(),
+                (Some(c), Some(r)) => {
+                    format!("{}; {}", describe(cell, c), remedy_text(cell, r))
+                }
+                (Some(c), None) => format!("{}; not fixed", describe(cell, c)),
+            };
+            format!("makespan {:.3}, {what}", it.makespan)
+        })
+        .collect();
+    // Rounds that read alike (the same collision met again and the same remedy applied on
+    // top, as a wait added to a wait) are one line.
+    // A round like an earlier one, further back, says so: the later remedies brought the
+    // same collision back.
+    let mut k = 0;
+    while k < lines.len() {
+        let same = lines[k..].iter().take_while(|l| **l == lines[k]).count();
+        let seen = lines[..k].iter().position(|l| *l == lines[k]);
+        let again = seen.map_or(String::new(), |e| {
+            format!(" (again, as in round {})", e + 1)
+        });
+        let _ = match same {
+            1 => writeln!(out, "round {}: {}{again}", k + 1, lines[k]),
+            n => writeln!(
+                out,
+                "rounds {}-{}: {}{again} ({n} rounds alike: the remedy applied again each time)",
+                k + 1,
+                k + n,
+                lines[k]
+            ),
         };
-        let _ = writeln!(out, "round {}: makespan {:.3}, {what}", k + 1, it.makespan);
+        k += same;
     }
     if rounds.is_empty() {
         let verdict = final_collision.map_or_else(
@@ -453,4 +488,46 @@ pub fn summary(
         ms(times.checking)
     );
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planning::PlannerOptions;
+    use crate::wcp::{legs::default_legs, MoveStore};
+
+    #[test]
+    fn intervals_too_short_to_print_give_their_duration() {
+        assert_eq!(span(2.44, 4.44), "[2.44-4.44]");
+        assert_eq!(span(7.81, 7.81), "[7.81, 0 s]");
+        assert_eq!(span(7.811, 7.813), "[7.81, 0.002 s]");
+        assert_eq!(span(7.8111, 7.81112), "[7.81, 2.0e-5 s]");
+        // Ends that print apart keep the plain form, however short.
+        assert_eq!(span(7.814, 7.816), "[7.81-7.82]");
+    }
+
+    #[test]
+    fn rounds_that_read_alike_are_one_line_and_repeats_say_so() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+        let cell = crate::cell::load_cell(path.as_ref()).unwrap().cell;
+        let store = MoveStore::new(&cell, &PlannerOptions::default());
+        let schedule =
+            Schedule::build(&cell, &[vec![0, 1], vec![2, 3]], &default_legs(2), &store).unwrap();
+        let round = |makespan: f64| Iteration {
+            makespan,
+            collision: None,
+            remedy: None,
+        };
+        let rounds = [round(2.0), round(2.0), round(2.0), round(3.0), round(2.0)];
+        let text = summary(&cell, &schedule, &rounds, None, StageTimes::default());
+        let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("round")).collect();
+        assert_eq!(
+            lines,
+            [
+                "rounds 1-3: makespan 2.000, collision-free (3 rounds alike: the remedy applied again each time)",
+                "round 4: makespan 3.000, collision-free",
+                "round 5: makespan 2.000, collision-free (again, as in round 1)",
+            ]
+        );
+    }
 }
