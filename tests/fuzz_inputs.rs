@@ -169,38 +169,6 @@ fn kept_narrow_phase_cases_agree_with_brute_force() {
     report(&failures);
 }
 
-/// Fragments that break SVG, HTML, the JSON a page embeds, terminals or bidirectional text.
-#[cfg(feature = "cli")]
-const NAME_FRAGMENTS: [&str; 27] = [
-    "<!--",
-    "-->",
-    "<script>",
-    "</script>",
-    "]]>",
-    "\"",
-    "'",
-    "&",
-    "&amp;",
-    "<",
-    ">",
-    "\u{202E}",
-    "\u{200B}",
-    "é",
-    "\u{1F916}",
-    "x",
-    " ",
-    "\\",
-    "/",
-    "`",
-    "${",
-    "\u{FEFF}",
-    "\u{0}",
-    "\u{1}",
-    "\u{1B}",
-    "\u{7F}",
-    "\u{FFFE}",
-];
-
 /// Seeded hostile names through the reader, the check and both drawings
 /// (`fuzz_support::exercise_names`, the `names` target of `fuzz/`).
 #[cfg(feature = "cli")]
@@ -211,9 +179,12 @@ fn hostile_names_are_refused_or_drawn_escaped() {
     let mut rng = ChaCha8Rng::seed_from_u64(setting("WORKCELL_FUZZ_SEED", SEED));
     let name = |rng: &mut ChaCha8Rng| -> String {
         let n = rng.random_range(0..=4);
-        (0..n)
-            .map(|_| *NAME_FRAGMENTS.choose(rng).unwrap())
-            .collect()
+        let all: Vec<&str> = fuzz_support::NAME_FRAGMENTS
+            .iter()
+            .chain(&fuzz_support::NAME_CONTROLS)
+            .copied()
+            .collect();
+        (0..n).map(|_| *all.choose(rng).unwrap()).collect()
     };
     for _ in 0..setting("WORKCELL_FUZZ_CASES", 300) {
         let names = [name(&mut rng), name(&mut rng), name(&mut rng)];

@@ -263,11 +263,15 @@ impl Chart<'_> {
         doc.add(lane)
     }
 
-    /// The makespan, a dashed line from the header to the axis, and its label.
+    /// The makespan (a scene's horizon), a dashed line from the header to the axis, and its
+    /// label.
     fn makespan(&self, doc: Document, placer: &mut Placer) -> Document {
         let m = self.m;
         let xm = self.axis.x(m.end);
-        let label = format!("makespan {:.3}", m.end);
+        // A scene's trajectories end where they end: its horizon, not a makespan.
+        let scene = m.tasks.is_empty() && m.robots.iter().all(|r| r.home.is_none());
+        let what = if scene { "horizon" } else { "makespan" };
+        let label = format!("{what} {:.3}", m.end);
         placer.take([xm - 8.0 - text_width(&label, 11.0), 52.0, xm + 2.0, 68.0]);
         doc.add(
             line(xm, 52.0, xm, self.lanes_bottom)

@@ -31,6 +31,9 @@ pub struct Model {
     pub robots: Vec<RobotView>,
     /// The fixed obstacles, in world coordinates.
     pub obstacles: Vec<Vec<[f64; 2]>>,
+    /// Each obstacle's name and the world point its label belongs to (the middle of its
+    /// box), in the scene's order.
+    pub obstacle_names: Vec<(String, [f64; 2])>,
     /// The tasks (none for a scene).
     pub tasks: Vec<TaskView>,
     /// The collision of each feedback round, in round order (solve only).
@@ -251,6 +254,27 @@ fn robots_of(scene: &Scene) -> Vec<RobotView> {
         .collect()
 }
 
+/// Each obstacle's name, at the middle of its box in the world.
+fn obstacle_names(scene: &Scene) -> Vec<(String, [f64; 2])> {
+    let names = scene.bodies.iter().filter_map(|b| {
+        let Motion::Fixed(p) = b.motion else {
+            return None;
+        };
+        let iso = nalgebra::Isometry2::new(p.pos, p.theta);
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for v in b.shape.vertices() {
+            let w = iso * nalgebra::Point2::from(*v);
+            for (i, c) in [w.x, w.y].into_iter().enumerate() {
+                lo[i] = lo[i].min(c);
+                hi[i] = hi[i].max(c);
+            }
+        }
+        let middle = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+        Some((b.name.clone(), middle))
+    });
+    names.collect()
+}
+
 /// The obstacles' polygons in the world: one per convex obstacle, its outline for one given
 /// by an outline, each part for one given by parts.
 fn obstacles_of(scene: &Scene) -> Vec<Vec<[f64; 2]>> {
@@ -357,6 +381,7 @@ impl Model {
             delta: cell.delta,
             robots,
             obstacles: obstacles_of(scene),
+            obstacle_names: obstacle_names(scene),
             tasks: cell
                 .tasks
                 .iter()
@@ -446,6 +471,7 @@ impl Model {
             delta: report.delta,
             robots,
             obstacles: obstacles_of(scene),
+            obstacle_names: obstacle_names(scene),
             tasks: Vec::new(),
             rounds: Vec::new(),
             contact,

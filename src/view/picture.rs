@@ -171,7 +171,13 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
         m.rounds.iter().collect()
     };
     let rings = ring_places(&marks, &frame, &mut placer);
+    doc = scale_bar(doc, &frame, &mut placer);
     doc = homes_and_tasks(doc, m, &frame, &mut placer);
+    // Obstacles' names last: a name left out costs less than a task's.
+    for (name, at) in &m.obstacle_names {
+        let (x, y) = frame.xy(at[0], at[1]);
+        doc = add_label(doc, &mut placer, (x, y), name, TASK_FONT, "#616161");
+    }
     doc = numbered_rings(doc, &marks, &rings, &frame);
     if !animated {
         doc = legend(
@@ -183,6 +189,41 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
         );
     }
     doc
+}
+
+/// A bar of a round length (1, 2 or 5 times a power of ten) near a sixth of the drawing's
+/// width, at its bottom left, labelled with that length in the file's unit.
+fn scale_bar(doc: Document, frame: &Frame, placer: &mut Placer) -> Document {
+    let wanted = (WIDTH - 2.0 * MARGIN) / frame.scale / 6.0;
+    if !(wanted.is_finite() && wanted > 0.0) {
+        return doc;
+    }
+    let power = 10f64.powf(wanted.log10().floor());
+    let length = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|k| k * power)
+        .min_by(|a, b| (a / wanted).ln().abs().total_cmp(&(b / wanted).ln().abs()))
+        .expect("four lengths");
+    let (x0, y) = (MARGIN, frame.height - 10.0);
+    let x1 = x0 + length * frame.scale;
+    let label = format!("{length}");
+    placer.take([
+        x0 - 2.0,
+        y - 16.0,
+        x1 + 4.0 + text_width(&label, 10.0),
+        y + 4.0,
+    ]);
+    let tick = |x: f64| line(x, y - 4.0, x, y + 4.0);
+    doc.add(
+        Group::new()
+            .set("id", "scale")
+            .set("stroke", "#212121")
+            .set("stroke-width", 1.5)
+            .add(line(x0, y, x1, y))
+            .add(tick(x0))
+            .add(tick(x1)),
+    )
+    .add(text(x1 + 4.0, y + 3.5, &label, 10.0, "#212121"))
 }
 
 /// The robots' names at their homes and the tasks' crosses with their labels ("n. task" in

@@ -509,3 +509,33 @@ fn without_entities(text: &str) -> String {
     out.push_str(rest);
     out
 }
+
+/// Fragments of names that break SVG, HTML, the JSON a page embeds, terminals or
+/// bidirectional text.
+pub const NAME_FRAGMENTS: [&str; 22] = [
+    "<!--",
+    "-->",
+    "<script>",
+    "</script>",
+    "]]>",
+    "\"",
+    "'",
+    "&",
+    "&amp;",
+    "<",
+    ">",
+    "\u{202E}",
+    "\u{200B}",
+    "é",
+    "\u{1F916}",
+    "x",
+    " ",
+    "\\",
+    "/",
+    "`",
+    "${",
+    "\u{FEFF}",
+];
+
+/// Characters no output may carry: a name holding one is refused.
+pub const NAME_CONTROLS: [&str; 5] = ["\u{0}", "\u{1}", "\u{1B}", "\u{7F}", "\u{FFFE}"];

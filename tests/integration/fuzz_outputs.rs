@@ -7,6 +7,7 @@
 //! output raw.
 
 use crate::common::{shipped, temp_dir_made};
+use fuzz_support::{NAME_CONTROLS, NAME_FRAGMENTS};
 use rand::seq::IndexedRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -15,6 +16,9 @@ use std::process::{Command, Output, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+#[path = "../fuzz_support/mod.rs"]
+mod fuzz_support;
 
 /// The seed of the cases: the same on every run.
 const SEED: u64 = 26;
@@ -313,38 +317,9 @@ fn outputs_of_every_kind_are_written_or_refused_cleanly() {
     );
 }
 
-/// Fragments that break SVG, HTML, JSON embedded in a page, terminals or bidirectional text.
-const FRAGMENTS: [&str; 22] = [
-    "<!--",
-    "-->",
-    "<script>",
-    "</script>",
-    "]]>",
-    "\"",
-    "'",
-    "&",
-    "&amp;",
-    "<",
-    ">",
-    "\u{202E}",
-    "\u{200B}",
-    "é",
-    "\u{1F916}",
-    "x",
-    " ",
-    "\\",
-    "/",
-    "`",
-    "${",
-    "\u{FEFF}",
-];
-
-/// Characters no output may carry: every name holding one is refused.
-const CONTROLS: [&str; 5] = ["\u{0}", "\u{1}", "\u{1B}", "\u{7F}", "\u{FFFE}"];
-
 fn hostile_name(rng: &mut ChaCha8Rng, k: usize) -> String {
     let mut name: String = (0..rng.random_range(1..=5))
-        .map(|_| *FRAGMENTS.choose(rng).unwrap())
+        .map(|_| *NAME_FRAGMENTS.choose(rng).unwrap())
         .collect();
     // Unique, whatever the fragments drawn.
     name.push_str(&format!("#{k}"));
@@ -395,7 +370,7 @@ fn hostile_names_never_break_an_output() {
                 let mut name = hostile_name(&mut rng, k);
                 k += 1;
                 if control.is_none() && rng.random_bool(0.03) {
-                    name.insert_str(0, CONTROLS.choose(&mut rng).unwrap());
+                    name.insert_str(0, NAME_CONTROLS.choose(&mut rng).unwrap());
                     control = Some(format!("{list}[{i}].name"));
                 }
                 doc[list][i]["name"] = serde_json::Value::String(name.clone());

@@ -178,3 +178,57 @@ fn evaluate_draws_the_collision_of_the_sequences_given() {
     let page = std::fs::read_to_string(&html).unwrap();
     assert!(page.contains("\"contact\":{\"round\":null"));
 }
+
+/// The still picture names every obstacle and has a scale bar of a round length; a scene's
+/// time line ends at its horizon, a cell's at its makespan.
+#[test]
+fn obstacles_are_named_a_scale_is_drawn_and_a_scene_has_a_horizon() {
+    let dir = temp_dir_made("view", "named");
+    let (svg, gantt) = (dir.join("paper.svg"), dir.join("paper-gantt.svg"));
+    let cell = shipped("paper-cell.json");
+    workcell(&[
+        "solve",
+        &cell,
+        "--svg",
+        svg.to_str().unwrap(),
+        "--gantt",
+        gantt.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    let contents: Vec<&str> = texts(&svg).into_iter().map(|(_, c)| c).collect();
+    for name in ["fixture-sw", "fixture-se", "fixture-nw", "fixture-ne"] {
+        assert!(contents.contains(&name), "{name} not named: {contents:?}");
+    }
+    assert!(svg.contains("id=\"scale\""));
+    // Its label is a round length: 1, 2 or 5 times a power of ten.
+    let round = |s: &&str| {
+        s.parse::<f64>().is_ok_and(|v| {
+            let m = v / 10f64.powf(v.log10().floor());
+            [1.0, 2.0, 5.0].iter().any(|k| (m - k).abs() < 1e-9)
+        })
+    };
+    assert!(contents.iter().any(round), "no scale label: {contents:?}");
+    let gantt = std::fs::read_to_string(&gantt).unwrap();
+    assert!(texts(&gantt).iter().any(|(_, c)| *c == "makespan 36.165"));
+    let scene_page = dir.join("scene.svg");
+    let scene = shipped("paper-fig12b.json");
+    let html = dir.join("scene.html");
+    workcell(&[
+        "check",
+        &scene,
+        "--svg",
+        scene_page.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    let page = std::fs::read_to_string(&html).unwrap();
+    let contents: Vec<&str> = texts(&page).into_iter().map(|(_, c)| c).collect();
+    assert!(
+        contents.iter().any(|c| c.starts_with("horizon ")),
+        "{contents:?}"
+    );
+    assert!(
+        !contents.iter().any(|c| c.starts_with("makespan")),
+        "{contents:?}"
+    );
+}

@@ -8,6 +8,19 @@ use crate::motion::{Pose, Trajectory};
 use aabb::Aabb;
 use grid::meeting;
 
+/// The default settings of a pair of `scene` at `delta`.
+fn settings(scene: &Scene, delta: f64) -> PairSettings {
+    let (t0, t1) = scene.horizon();
+    PairSettings {
+        delta,
+        grazing_tol: 1e-4 * delta,
+        time_tol: 1e-6 * (t1 - t0),
+        start: t0,
+        walk: Default::default(),
+        max_work: crate::collision::DEFAULT_MAX_WORK_PER_PAIR,
+    }
+}
+
 /// Candidates come in report order, and every pair left out is δ apart: the adaptive
 /// check finds no contact on it, nor does the exact distance at 200 instants.
 fn pruning_is_safe(scene: &Scene, delta: f64) -> usize {
@@ -18,14 +31,7 @@ fn pruning_is_safe(scene: &Scene, delta: f64) -> usize {
         "not in order"
     );
     let (t0, t1) = scene.horizon();
-    let settings = PairSettings {
-        delta,
-        grazing_tol: 1e-4 * delta,
-        time_tol: 1e-6 * (t1 - t0),
-        start: t0,
-        walk: Default::default(),
-        max_work: crate::collision::DEFAULT_MAX_WORK_PER_PAIR,
-    };
+    let settings = settings(scene, delta);
     let pruned: Vec<_> = all.iter().filter(|p| !candidates.contains(p)).collect();
     for &&(i, j) in &pruned {
         let (a, b) = (&scene.bodies[i], &scene.bodies[j]);
@@ -361,14 +367,7 @@ fn windows_miss_nothing(scene: &Scene, delta: f64) -> (usize, usize) {
     let pairs: Vec<_> = scene.pairs();
     let windows = pair_windows(scene, &pairs, delta);
     let (t0, t1) = scene.horizon();
-    let settings = PairSettings {
-        delta,
-        grazing_tol: 1e-4 * delta,
-        time_tol: 1e-6 * (t1 - t0),
-        start: t0,
-        walk: Default::default(),
-        max_work: crate::collision::DEFAULT_MAX_WORK_PER_PAIR,
-    };
+    let settings = settings(scene, delta);
     let (mut windowed, mut contacts) = (0, 0);
     for (&(i, j), w) in pairs.iter().zip(windows) {
         let Some(w) = w else { continue };
