@@ -412,12 +412,21 @@ fn a_past_deadline_still_gives_a_whole_valid_plan() {
         sol.makespan,
         unhurried.makespan
     );
-    // Only the search stopped: the first plan is the full construction, not descended.
+    // Only the search stopped (the construction's own deadline far off): the first plan is
+    // the full construction, not descended.
     let built = SequencerOptions {
         deadline: past,
+        construction_deadline: Some(Instant::now() + std::time::Duration::from_secs(3600)),
         ..free.clone()
     };
     let sol_built = solve(&inst, &[], &built).unwrap();
     assert_valid(&inst, &[], &sol_built);
     assert!(sol_built.makespan >= unhurried.makespan);
+    // The construction in full beats the hurried one: the two deadlines are apart.
+    assert!(
+        sol_built.makespan < sol.makespan,
+        "{} vs {}",
+        sol_built.makespan,
+        sol.makespan
+    );
 }
