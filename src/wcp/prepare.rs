@@ -87,7 +87,7 @@ impl std::fmt::Display for Unfinished {
         write!(
             f,
             "the time limit ran out while planning: {} of {} {what} planned and certified, \
-             and a schedule needs them all; give a longer --time-limit",
+             and a schedule needs them all; give a longer time limit",
             self.done, self.total
         )
     }
