@@ -414,7 +414,7 @@ fn reshaped(mut items: Vec<Value>, rng: &mut impl RngCore) -> Vec<Value> {
 
 /// The markers a name could forge in a picture or a page.
 #[cfg(feature = "cli")]
-fn markers(text: &str) -> [usize; 4] {
+pub fn markers(text: &str) -> [usize; 4] {
     ["<script", "</script", "<!--", "]]>"].map(|m| text.matches(m).count())
 }
 

@@ -7,7 +7,7 @@
 //! output raw.
 
 use crate::common::{shipped, temp_dir_made};
-use fuzz_support::{NAME_CONTROLS, NAME_FRAGMENTS};
+use fuzz_support::{markers, NAME_CONTROLS, NAME_FRAGMENTS};
 use rand::seq::IndexedRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -324,11 +324,6 @@ fn hostile_name(rng: &mut ChaCha8Rng, k: usize) -> String {
     // Unique, whatever the fragments drawn.
     name.push_str(&format!("#{k}"));
     name
-}
-
-/// The counts of the markers a name could forge in a page or picture.
-fn markers(text: &str) -> [usize; 4] {
-    ["<script", "</script", "<!--", "]]>"].map(|m| text.matches(m).count())
 }
 
 #[test]
