@@ -22,7 +22,7 @@ use workcell::geometry::Vec2;
 
 /// How far a drawn vertex may be from where the trajectory puts it, in pixels.
 const PIXEL: f64 = 1.0;
-/// The browser window: wide enough for the cell and the Gantt chart side by side.
+/// The browser window of most checks (the page fits any landscape window).
 const WINDOW: (u32, u32) = (1820, 760);
 
 fn workcell(args: &[&str]) -> std::process::Output {
@@ -70,6 +70,69 @@ fn browser() -> Option<Browser> {
             None
         }
     }
+}
+
+/// Common screens, landscape: the page must fit each without scrolling.
+const SCREENS: [(u32, u32); 2] = [(1366, 768), (1920, 1080)];
+
+/// At each of the [`SCREENS`], the open page fits the window: nothing to scroll, the cell, the
+/// controls, the whole Gantt chart and the rounds' buttons inside the window, the Gantt chart
+/// at least 60 % of its natural size (its text stays readable) and the cell drawn large
+/// (at least half the window's height or 40 % of its width). The window is restored after.
+fn fits_the_window(b: &Browser, what: &str) {
+    for (w, h) in SCREENS {
+        let [iw, ih] = b.viewport(w, h);
+        assert!(
+            (iw - f64::from(w)).abs() <= 1.0 && (ih - f64::from(h)).abs() <= 1.0,
+            "{what}: a {w}x{h} window has a {iw}x{ih} viewport"
+        );
+        let boxes = b.run(
+            "const box = e => { const r = e.getBoundingClientRect(); \
+               return [r.left, r.top, r.right, r.bottom]; }; \
+             const g = document.querySelector('#gantt svg'); \
+             return { \
+               page: [document.documentElement.scrollWidth, document.documentElement.scrollHeight], \
+               stage: box(document.getElementById('stage-svg')), \
+               gantt: box(g), ganttNatural: g.viewBox.baseVal.width, \
+               controls: box(document.getElementById('controls')), \
+               buttons: Array.from(document.querySelectorAll('#marks button')).map(box) };",
+            json!([]),
+        );
+        let rect = |v: &Value| -> [f64; 4] { serde_json::from_value(v.clone()).unwrap() };
+        let inside =
+            |r: [f64; 4]| r[0] >= -0.5 && r[1] >= -0.5 && r[2] <= iw + 0.5 && r[3] <= ih + 0.5;
+        let page: [f64; 2] = serde_json::from_value(boxes["page"].clone()).unwrap();
+        assert!(
+            page[0] <= iw && page[1] <= ih,
+            "{what} at {w}x{h}: the page is {page:?}, it scrolls"
+        );
+        for part in ["stage", "gantt", "controls"] {
+            let r = rect(&boxes[part]);
+            assert!(
+                inside(r),
+                "{what} at {w}x{h}: the {part} at {r:?} is outside the window"
+            );
+        }
+        for button in boxes["buttons"].as_array().unwrap() {
+            let r = rect(button);
+            assert!(
+                inside(r),
+                "{what} at {w}x{h}: a round's button at {r:?} is outside the window"
+            );
+        }
+        let gantt = rect(&boxes["gantt"]);
+        let natural = boxes["ganttNatural"].as_f64().unwrap();
+        assert!(
+            gantt[2] - gantt[0] >= 0.6 * natural.min(iw / 2.0),
+            "{what} at {w}x{h}: the Gantt chart is squeezed to {gantt:?}"
+        );
+        let stage = rect(&boxes["stage"]);
+        assert!(
+            stage[3] - stage[1] >= 0.5 * ih || stage[2] - stage[0] >= 0.4 * iw,
+            "{what} at {w}x{h}: the cell is drawn small, {stage:?}"
+        );
+    }
+    b.viewport(WINDOW.0, WINDOW.1);
 }
 
 /// Sets the time with the slider as a user drags it; the time the page then shows.
@@ -148,12 +211,14 @@ fn expected(scene: &Scene, frame: &Frame, t: f64, robots: bool) -> Vec<Vec<[f64;
     drawn
 }
 
-fn assert_near(drawn: &[Vec<[f64; 2]>], want: &[Vec<[f64; 2]>], what: &str) {
+/// Each vertex drawn within a pixel of the screen (`scale` pixels per stage unit) of where
+/// the trajectory puts it.
+fn assert_near(drawn: &[Vec<[f64; 2]>], want: &[Vec<[f64; 2]>], scale: f64, what: &str) {
     assert_eq!(drawn.len(), want.len(), "{what}: number of bodies");
     for (k, (d, w)) in drawn.iter().zip(want).enumerate() {
         assert_eq!(d.len(), w.len(), "{what}: body {k}'s vertices");
         for (p, q) in d.iter().zip(w) {
-            let off = (p[0] - q[0]).hypot(p[1] - q[1]);
+            let off = scale * (p[0] - q[0]).hypot(p[1] - q[1]);
             assert!(
                 off <= PIXEL,
                 "{what}: body {k} drawn at {p:?}, trajectory at {q:?}"
@@ -164,17 +229,26 @@ fn assert_near(drawn: &[Vec<[f64; 2]>], want: &[Vec<[f64; 2]>], what: &str) {
 
 /// The robots drawn at a few times, set with the slider, against the trajectories.
 fn robots_follow_the_trajectories(b: &Browser, scene: &Scene, times: &[f64], what: &str) {
-    // One unit of the stage is one pixel of the page: no scaling between them.
+    // The stage is scaled to the window, alike in x and y, unrotated: `scale` pixels a unit.
     let ctm = b.run(
         "const m = document.getElementById('stage-svg').getScreenCTM(); return [m.a, m.b, m.c, m.d];",
         json!([]),
     );
     let ctm: Vec<f64> = serde_json::from_value(ctm).unwrap();
-    assert_eq!(ctm, [1.0, 0.0, 0.0, 1.0], "{what}: stage scaled");
+    let scale = ctm[0];
+    assert!(
+        scale > 0.0 && ctm[3] == scale && ctm[1] == 0.0 && ctm[2] == 0.0,
+        "{what}: stage transformed by {ctm:?}"
+    );
     let frame = Frame::read(b);
     // The frame is the still drawing's: the obstacles it drew are where the scene has them.
     let obstacles = polygons(b, "#stage-svg > polygon[fill='#bdbdbd']");
-    assert_near(&obstacles, &expected(scene, &frame, 0.0, false), what);
+    assert_near(
+        &obstacles,
+        &expected(scene, &frame, 0.0, false),
+        scale,
+        what,
+    );
     let (t0, t1) = scene.horizon();
     let mut cursor = Vec::new();
     for &t in times {
@@ -185,6 +259,7 @@ fn robots_follow_the_trajectories(b: &Browser, scene: &Scene, times: &[f64], wha
         assert_near(
             &drawn,
             &expected(scene, &frame, shown, true),
+            scale,
             &format!("{what} at t = {shown}"),
         );
         let x = b.run(
@@ -244,6 +319,7 @@ fn animated_pages_in_headless_chromium() {
     parts_page(&b);
     arms_page(&b);
     scara_page(&b);
+    many_robots_page(&b);
     hostile_names_page(&b);
     let _ = std::fs::remove_dir_all(temp_dir());
 }
@@ -273,6 +349,7 @@ fn solve_page(b: &Browser) {
         makespan,
         makespan + 5.0,
     ];
+    fits_the_window(b, "solve page");
     robots_follow_the_trajectories(b, &scene, &times, "solve page");
     // At the end, the cursor sits on the makespan's line.
     set_time(b, makespan);
@@ -318,13 +395,16 @@ fn solve_page(b: &Browser) {
     );
     no_console_errors(b, "solve page");
     if let Some(png) = std::env::var_os("WORKCELL_SCREENSHOT") {
-        // The README's picture: the first round's collision shown, the first robot clicked.
+        // The README's picture: on a laptop's screen, the first round's collision shown, the
+        // first robot clicked.
+        b.viewport(SCREENS[0].0, SCREENS[0].1);
         b.click("#marks button");
         b.run(
             "document.getElementById('robot-0').dispatchEvent(new MouseEvent('click'));",
             json!([]),
         );
         std::fs::write(&png, b.screenshot()).expect("the screenshot is written");
+        b.viewport(WINDOW.0, WINDOW.1);
     }
 }
 
@@ -346,6 +426,7 @@ fn check_page(b: &Browser) {
     let scene = load_scene(Path::new(&scene_file)).unwrap().scene;
     b.open(&format!("file://{}", page.display()));
     let (t0, t1) = scene.horizon();
+    fits_the_window(b, "check page");
     robots_follow_the_trajectories(
         b,
         &scene,
@@ -503,6 +584,26 @@ fn arms_page(b: &Browser) {
     no_console_errors(b, "arms page");
 }
 
+/// The page of a generated cell of thirty robots: their Gantt chart, taller than the window
+/// at its natural size, still fits.
+fn many_robots_page(b: &Browser) {
+    let dir = temp_dir().join("thirty");
+    let out = dir.to_str().unwrap();
+    #[rustfmt::skip]
+    workcell(&["generate", "--kind", "cell", "--robots", "30", "--tasks", "60", "--seed", "3", "--out", out]);
+    let cell = dir.join("cell-30r-60t-3f-3-0-cell.json");
+    let page = temp("thirty.html");
+    workcell(&[
+        "solve",
+        cell.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    b.open(&format!("file://{}", page.display()));
+    fits_the_window(b, "thirty robots' page");
+    no_console_errors(b, "thirty robots' page");
+}
+
 /// `solve`'s page of an arm cell (issue 22, item 5): each link where the exported scene's
 /// joints put it, between samples too, one status row per arm.
 fn scara_page(b: &Browser) {
@@ -528,6 +629,7 @@ fn scara_page(b: &Browser) {
         0.6 * makespan + 0.01,
         makespan,
     ];
+    fits_the_window(b, "scara page");
     robots_follow_the_trajectories(b, &scene, &times, "scara page");
     let rows = b.run(
         "return document.querySelectorAll('#status tr').length;",

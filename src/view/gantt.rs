@@ -1,8 +1,10 @@
 //! `--gantt`: one lane per robot, its moves, tasks, waits and remedies as coloured bars over
-//! a time axis; the makespan and the collision of each feedback round marked.
+//! a time axis; the makespan marked, a collision of the schedule drawn on its robots' lanes,
+//! and the collisions of the feedback rounds' rejected schedules in a strip of their own
+//! under the lanes (they are not in the schedule drawn).
 
 use super::labels::{text_width, Placer};
-use super::model::{kind_colour, Mark, Model, RobotView, KINDS};
+use super::model::{kind_colour, Model, RobotView, KINDS};
 use super::picture::{line, page, text, titled};
 use svg::node::element::{Group, Polygon, Rectangle, Title};
 use svg::Document;
@@ -18,9 +20,12 @@ const HEADER: f64 = 74.0;
 /// Height of a lane and of a bar in it.
 const LANE: f64 = 34.0;
 const BAR: f64 = 16.0;
+/// Height of the strip of the rejected rounds' collisions.
+const STRIP: f64 = 30.0;
 /// The time axis under the lanes, and a legend row.
 const AXIS: f64 = 36.0;
 const LEGEND_ROW: f64 = 18.0;
+const KINDS_PER_ROW: usize = 5;
 /// Font size of the task names in their bars.
 const BAR_FONT: f64 = 10.0;
 /// Narrowest bar of a wait, pause or other remedy, in pixels.
@@ -83,8 +88,10 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
         scale: (width - LEFT - RIGHT) / (t1 - t0),
         left: LEFT,
     };
-    // One lane per robot: an arm's links share its first link's.
-    let lanes_bottom = HEADER + LANE * m.robots.iter().filter(|r| r.leads()).count() as f64;
+    // One lane per robot (an arm's links share its first link's), and the rounds' strip.
+    let lanes_end = HEADER + LANE * m.robots.iter().filter(|r| r.leads()).count() as f64;
+    let strip = if m.rounds.is_empty() { 0.0 } else { STRIP };
+    let lanes_bottom = lanes_end + strip;
     let kinds: Vec<_> = KINDS
         .iter()
         .filter(|k| {
@@ -93,13 +100,16 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
                 .any(|r| r.bars.iter().any(|b| b.kind == k.0))
         })
         .collect();
-    let legend_rows = 1 + (kinds.len() + 2) / 5;
+    // The kinds five to a row, then a row for the collision marks.
+    let marked = m.contact.is_some() || !m.rounds.is_empty();
+    let legend_rows = kinds.len().div_ceil(KINDS_PER_ROW) + usize::from(marked);
     let height = lanes_bottom + AXIS + LEGEND_ROW * legend_rows as f64 + 8.0;
     let chart = Chart {
         m,
         width,
         axis,
         t1,
+        lanes_end,
         lanes_bottom,
     };
     let mut doc = chart.header(height);
@@ -109,7 +119,8 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
         doc = chart.lane(doc, r, robot, &mut placer);
     }
     doc = chart.makespan(doc, &mut placer);
-    doc = chart.collisions(doc, &mut placer);
+    doc = chart.rejected_rounds(doc, &mut placer);
+    doc = chart.contact(doc, &mut placer);
     if cursor {
         doc = doc.add(
             line(LEFT, HEADER - 4.0, LEFT, lanes_bottom + 4.0)
@@ -128,6 +139,9 @@ struct Chart<'a> {
     axis: TimeAxis,
     /// The end of the time axis.
     t1: f64,
+    /// The bottom of the last robot's lane.
+    lanes_end: f64,
+    /// The bottom of the rounds' strip (of the lanes when there is none): the time axis.
     lanes_bottom: f64,
 }
 
@@ -188,21 +202,14 @@ impl Chart<'_> {
             )
     }
 
-    /// The collision marks: each feedback round's, or the check's contact when there are no
-    /// rounds.
-    fn marks(&self) -> impl Iterator<Item = &Mark> {
-        let m = self.m;
-        m.rounds
-            .iter()
-            .chain(m.rounds.is_empty().then_some(()).and(m.contact.as_ref()))
-    }
-
     /// Robot `r`'s name and lane of bars, task names in the bars they fit.
     fn lane(&self, doc: Document, r: usize, robot: &RobotView, placer: &mut Placer) -> Document {
         let (axis, t1) = (self.axis, self.t1);
-        // Collision marks on this lane: a task's name is left out of a bar that one would cover.
+        // The collision on this lane: a task's name is left out of a bar that it would cover.
         let marks_here: Vec<f64> = self
-            .marks()
+            .m
+            .contact
+            .iter()
             .filter(|mark| mark.bodies.contains(&robot.name))
             .map(|mark| axis.x(mark.time))
             .collect();
@@ -283,42 +290,85 @@ impl Chart<'_> {
         .add(text(xm - 4.0, 64.0, &label, 11.0, "#212121").set("text-anchor", "end"))
     }
 
-    /// Each round's collision as a diamond on the lanes of both its robots, numbered by
-    /// round; a number sits in the gap above its lane, at its mark or as near beside it as
-    /// is free.
-    fn collisions(&self, mut doc: Document, placer: &mut Placer) -> Document {
+    /// The collision of the schedule drawn (a check's contact, or the last schedule of a solve
+    /// that found none free) as a diamond on the lanes of both its robots.
+    fn contact(&self, doc: Document, placer: &mut Placer) -> Document {
         let m = self.m;
+        let Some(mark) = &m.contact else {
+            return doc;
+        };
         let lanes = || m.robots.iter().filter(|r| r.leads());
-        let lane_of = |name: &str| lanes().position(|r| r.name == name);
-        let mut diamonds = Group::new().set("fill", "#d50000").set("stroke", "white");
+        let x = self.axis.x(mark.time);
+        let mut diamonds = Group::new()
+            .set("id", "contact-marks")
+            .set("fill", "#d50000")
+            .set("stroke", "white");
+        for lane in mark
+            .bodies
+            .iter()
+            .filter_map(|b| lanes().position(|r| &r.name == b))
+        {
+            let y = HEADER + LANE * lane as f64 + LANE / 2.0;
+            diamonds = diamonds.add(diamond(x, y).add(Title::new(format!(
+                "{} and {} collide at t = {:.3}",
+                mark.bodies[0], mark.bodies[1], mark.time
+            ))));
+            placer.take([x - 5.0, y - 7.0, x + 5.0, y + 7.0]);
+        }
+        doc.add(diamonds)
+    }
+
+    /// The strip under the lanes: each feedback round's collision, in the schedule that round
+    /// checked and rejected, as a diamond at its time numbered with its round (a number sits
+    /// above its diamond or as near beside it as is free).
+    fn rejected_rounds(&self, mut doc: Document, placer: &mut Placer) -> Document {
+        let m = self.m;
+        if m.rounds.is_empty() {
+            return doc;
+        }
+        let (top, bottom) = (self.lanes_end, self.lanes_bottom);
+        let y = bottom - 9.0;
+        doc = doc
+            .add(
+                Rectangle::new()
+                    .set("id", "rejected-strip")
+                    .set("x", LEFT)
+                    .set("y", top + 2.0)
+                    .set("width", self.axis.x(self.t1) - LEFT)
+                    .set("height", bottom - top - 2.0)
+                    .set("fill", "#d50000")
+                    .set("fill-opacity", 0.07),
+            )
+            .add(
+                text(LEFT - 8.0, top + 13.0, "rejected", 10.0, "#b71c1c")
+                    .set("text-anchor", "end")
+                    .set("font-style", "italic"),
+            )
+            .add(
+                text(LEFT - 8.0, top + 25.0, "rounds", 10.0, "#b71c1c")
+                    .set("text-anchor", "end")
+                    .set("font-style", "italic"),
+            );
+        let mut diamonds = Group::new()
+            .set("id", "round-marks")
+            .set("fill", "#d50000")
+            .set("stroke", "white");
         let mut numbers = Vec::new();
-        for mark in self.marks() {
+        for mark in &m.rounds {
             let x = self.axis.x(mark.time);
-            for lane in mark.bodies.iter().filter_map(|b| lane_of(b)) {
-                let y = HEADER + LANE * lane as f64 + LANE / 2.0;
-                diamonds = diamonds.add(Polygon::new().set(
-                    "points",
-                    format!(
-                        "{:.2},{:.2} {:.2},{:.2} {:.2},{:.2} {:.2},{:.2}",
-                        x,
-                        y - 7.0,
-                        x + 5.0,
-                        y,
-                        x,
-                        y + 7.0,
-                        x - 5.0,
-                        y
-                    ),
-                ));
-                placer.take([x - 5.0, y - 7.0, x + 5.0, y + 7.0]);
-                numbers.push((x, y, mark.round));
-            }
+            let round = mark.round.map_or("?".to_owned(), |r| r.to_string());
+            diamonds = diamonds.add(diamond(x, y).add(Title::new(format!(
+                "round {round}: {} and {} collided at t = {:.3} in the schedule that round \
+                 checked (not the one drawn)",
+                mark.bodies[0], mark.bodies[1], mark.time
+            ))));
+            placer.take([x - 5.0, y - 7.0, x + 5.0, y + 7.0]);
+            numbers.push((x, round));
         }
         doc = doc.add(diamonds);
-        for (x, y, round) in numbers {
-            let label = round.map_or("collision".to_owned(), |r| r.to_string());
+        for (x, label) in numbers {
             let w = text_width(&label, 10.0);
-            let base = y - BAR / 2.0 - 3.0;
+            let base = y - 9.0;
             let spot = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0]
                 .into_iter()
                 .map(|k| x - w / 2.0 + k * (w + 3.0))
@@ -342,7 +392,12 @@ impl Chart<'_> {
         let (m, width) = (self.m, self.width);
         let mut x = LEFT;
         let mut y = self.lanes_bottom + AXIS + LEGEND_ROW - 4.0;
+        let slot = (width - LEFT - RIGHT) / KINDS_PER_ROW as f64;
         for (n, k) in kinds.iter().enumerate() {
+            if n > 0 && n.is_multiple_of(KINDS_PER_ROW) {
+                x = LEFT;
+                y += LEGEND_ROW;
+            }
             doc = doc
                 .add(
                     Rectangle::new()
@@ -353,38 +408,40 @@ impl Chart<'_> {
                         .set("fill", k.1),
                 )
                 .add(text(x + 20.0, y, k.2, 11.0, "#212121"));
-            x += (width - LEFT - RIGHT) / 5.0;
-            if (n + 1) % 5 == 0 {
-                x = LEFT;
-                y += LEGEND_ROW;
-            }
+            x += slot;
         }
-        if !m.rounds.is_empty() || m.contact.is_some() {
-            let what = if m.rounds.is_empty() {
-                "the collision"
-            } else {
-                "n: collision of round n (both robots)"
-            };
+        (x, y) = (LEFT, y + LEGEND_ROW);
+        let marks = [
+            (m.contact.is_some(), "the collision"),
+            (
+                !m.rounds.is_empty(),
+                "n: the collision that rejected round n's schedule",
+            ),
+        ];
+        for (_, what) in marks.into_iter().filter(|(shown, _)| *shown) {
             doc = doc
-                .add(
-                    Polygon::new()
-                        .set(
-                            "points",
-                            format!(
-                                "{x},{} {},{} {x},{} {},{}",
-                                y - 12.0,
-                                x + 5.0,
-                                y - 5.0,
-                                y + 2.0,
-                                x - 5.0,
-                                y - 5.0
-                            ),
-                        )
-                        .set("fill", "#d50000")
-                        .set("transform", "translate(6 0)"),
-                )
+                .add(diamond(x + 6.0, y - 5.0).set("fill", "#d50000"))
                 .add(text(x + 20.0, y, what, 11.0, "#212121"));
+            x += slot.max(20.0 + text_width(what, 11.0) + 12.0);
         }
         doc
     }
+}
+
+/// A collision's mark: a diamond 10 pixels wide and 14 high centred on `(x, y)`.
+fn diamond(x: f64, y: f64) -> Polygon {
+    Polygon::new().set(
+        "points",
+        format!(
+            "{:.2},{:.2} {:.2},{:.2} {:.2},{:.2} {:.2},{:.2}",
+            x,
+            y - 7.0,
+            x + 5.0,
+            y,
+            x,
+            y + 7.0,
+            x - 5.0,
+            y
+        ),
+    )
 }

@@ -85,14 +85,15 @@ impl Frame {
         (self.ox + x * self.scale, self.oy - y * self.scale)
     }
 
-    fn point(&self, p: [f64; 2]) -> String {
-        let (x, y) = self.xy(p[0], p[1]);
-        format!("{x:.2},{y:.2}")
-    }
-
-    fn polygon(&self, vertices: impl Iterator<Item = [f64; 2]>) -> Polygon {
-        let points: Vec<String> = vertices.map(|v| self.point(v)).collect();
-        Polygon::new().set("points", points.join(" "))
+    /// A polygon of world vertices, its sides taken in `placer`: no label will cross them.
+    fn outline(&self, vertices: impl Iterator<Item = [f64; 2]>, placer: &mut Placer) -> Polygon {
+        let points: Vec<(f64, f64)> = vertices.map(|v| self.xy(v[0], v[1])).collect();
+        placer.take_outline(&points, true);
+        let text: Vec<String> = points
+            .iter()
+            .map(|(x, y)| format!("{x:.2},{y:.2}"))
+            .collect();
+        Polygon::new().set("points", text.join(" "))
     }
 }
 
@@ -153,13 +154,13 @@ pub fn cell_svg(m: &Model, animated: bool) -> Document {
     for o in &m.obstacles {
         doc = doc.add(
             frame
-                .polygon(o.iter().copied())
+                .outline(o.iter().copied(), &mut placer)
                 .set("fill", "#bdbdbd")
                 .set("stroke", "#616161"),
         );
     }
     for robot in &m.robots {
-        doc = doc.add(robot_layer(m, robot, &frame, animated));
+        doc = doc.add(robot_layer(m, robot, &frame, animated, &mut placer));
     }
     // Symbols first, so that labels keep clear of them.
     // The page shows the rings itself, at their times.
@@ -369,14 +370,20 @@ fn numbered_rings(
 }
 
 /// The path with arrowheads along it, and (still) the shape at home and at each task.
-fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> Group {
+/// A robot's path with arrows, and in the still picture its body where it works; every line
+/// taken in `placer`.
+fn robot_layer(
+    m: &Model,
+    robot: &RobotView,
+    frame: &Frame,
+    animated: bool,
+    placer: &mut Placer,
+) -> Group {
     let colour = robot.colour;
     let mut group = Group::new().set("stroke", colour);
-    let points: Vec<String> = robot
-        .samples
-        .iter()
-        .map(|s| frame.point([s[1], s[2]]))
-        .collect();
+    let path: Vec<(f64, f64)> = robot.samples.iter().map(|s| frame.xy(s[1], s[2])).collect();
+    placer.take_outline(&path, false);
+    let points: Vec<String> = path.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
     group = group.add(
         Polyline::new()
             .set("points", points.join(" "))
@@ -407,6 +414,7 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
             )
         };
         let (l, r) = (back(1.0), back(-1.0));
+        placer.take_outline(&[tip, l, r], true);
         group = group.add(
             Polygon::new()
                 .set(
@@ -430,7 +438,7 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
             for polygon in robot.drawn() {
                 group = group.add(
                     frame
-                        .polygon(placed(polygon, pose))
+                        .outline(placed(polygon, pose), placer)
                         .set("fill", colour)
                         .set("fill-opacity", 0.12)
                         .set("stroke-width", 1),
@@ -439,7 +447,7 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
         }
     }
     if let Some(arm) = &robot.arm {
-        group = group.add(arm_marks(arm, robot, frame, animated));
+        group = group.add(arm_marks(arm, robot, frame, animated, placer));
     }
     if let Some(h) = robot.home {
         let (x, y) = frame.xy(h[0], h[1]);
@@ -457,7 +465,13 @@ fn robot_layer(m: &Model, robot: &RobotView, frame: &Frame, animated: bool) -> G
 
 /// A link of an arm: the base as a square (link 0), and in the still picture the link where
 /// the arm starts, with its joint as a dot (links past the base); the page draws them moving.
-fn arm_marks(arm: &ArmView, robot: &RobotView, frame: &Frame, animated: bool) -> Group {
+fn arm_marks(
+    arm: &ArmView,
+    robot: &RobotView,
+    frame: &Frame,
+    animated: bool,
+    placer: &mut Placer,
+) -> Group {
     let mut group = Group::new();
     if arm.link == 0 {
         let (x, y) = frame.xy(arm.base[0], arm.base[1]);
@@ -482,7 +496,7 @@ fn arm_marks(arm: &ArmView, robot: &RobotView, frame: &Frame, animated: bool) ->
     for polygon in robot.drawn() {
         group = group.add(
             frame
-                .polygon(placed(polygon, [p.pos.x, p.pos.y, p.theta]))
+                .outline(placed(polygon, [p.pos.x, p.pos.y, p.theta]), placer)
                 .set("fill", robot.colour)
                 .set("fill-opacity", 0.3)
                 .set("stroke-width", 1),
@@ -545,11 +559,9 @@ fn add_label(
         return doc;
     };
     let mut doc = doc;
-    if p.led {
-        // To the nearer end of the label, at its middle height.
-        let lx = if p.x >= x { p.x } else { p.x + width };
+    if let Some([x0, y0, x1, y1]) = p.leader {
         doc = doc.add(
-            line(x, y, lx, p.y - 0.35 * size)
+            line(x0, y0, x1, y1)
                 .set("stroke", colour)
                 .set("stroke-width", 0.6),
         );
@@ -618,7 +630,7 @@ fn legend_entries(m: &Model, rings: bool) -> Vec<(Symbol, &'static str)> {
             if m.rounds.is_empty() {
                 "the collision"
             } else {
-                "n: collision of round n"
+                "n: where round n's schedule collided (that schedule was rejected)"
             },
         ));
     }
@@ -669,7 +681,7 @@ fn legend(mut doc: Document, m: &Model, top: f64, left_out: usize, rings: bool) 
         doc = doc.add(text(
             MARGIN,
             y,
-            &format!("{left_out} labels left out where they would overprint"),
+            &format!("{left_out} labels left out where they would overprint or cross a line"),
             11.0,
             "#616161",
         ));

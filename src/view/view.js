@@ -314,6 +314,17 @@
     if (Math.abs(Math.log(((t1 - t0) / 20) / o.value)) < Math.abs(Math.log(((t1 - t0) / 20) / best.value))) best = o;
   }
   speed.value = best.value;
+  // A tall Gantt chart (many robots) shrinks to the height of its column less the rounds'
+  // buttons: the whole chart and the buttons stay in the window, never below the fold (what
+  // the robots are doing may scroll, under them).
+  const side = document.getElementById("side");
+  const ganttSvg = document.querySelector("#gantt svg");
+  function fitGantt() {
+    const room = side.clientHeight - (marks.childElementCount > 0 ? marks.offsetHeight + 8 : 0);
+    ganttSvg.style.maxHeight = Math.max(room, 160) + "px";
+  }
+  window.addEventListener("resize", fitGantt);
+  fitGantt();
   setTime(t0);
   requestAnimationFrame(frame);
   // For the browser test and for the curious: the time shown and whether it plays.

@@ -93,6 +93,29 @@ impl Browser {
         }
     }
 
+    /// Resizes the window so that the page's viewport is `width` × `height` (the window's
+    /// frame, even headless, takes some of the window); the viewport's size then.
+    pub fn viewport(&self, width: u32, height: u32) -> [f64; 2] {
+        let inner = || -> [f64; 2] {
+            let v = self.run("return [window.innerWidth, window.innerHeight];", json!([]));
+            serde_json::from_value(v).expect("the viewport's size")
+        };
+        let (mut w, mut h) = (f64::from(width), f64::from(height));
+        for _ in 0..3 {
+            self.command(
+                "POST",
+                "window/rect",
+                Some(&json!({"width": w, "height": h})),
+            );
+            let [iw, ih] = inner();
+            if iw == f64::from(width) && ih == f64::from(height) {
+                break;
+            }
+            (w, h) = (w + f64::from(width) - iw, h + f64::from(height) - ih);
+        }
+        inner()
+    }
+
     /// Opens a page.
     pub fn open(&self, url: &str) {
         self.command("POST", "url", Some(&json!({ "url": url })));
