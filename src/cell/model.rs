@@ -181,6 +181,25 @@ impl CellRobot {
             RobotKind::Rigid(_) => None,
         }
     }
+
+    /// How far the robot's body reaches from its reference point: a rigid robot's radius
+    /// (the disc about G that holds it in every rotation), an arm's largest link's.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+    /// let cell = workcell::cell::load_cell(path.as_ref())?.cell;
+    /// // A square of side 1: half its diagonal.
+    /// assert!((cell.robots[0].body_radius() - 0.5f64.hypot(0.5)).abs() < 1e-12);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn body_radius(&self) -> f64 {
+        match &self.kind {
+            RobotKind::Rigid(robot) => robot.shape.radius(),
+            RobotKind::Arm(arm) => (arm.links.iter())
+                .map(|(_, body)| body.hull().radius())
+                .fold(0.0, f64::max),
+        }
+    }
 }
 
 impl RigidRobot {

@@ -440,6 +440,35 @@ impl ConvexPolygon {
     pub fn radius(&self) -> f64 {
         self.radius
     }
+
+    /// Distance from point `p` to the polygon in its own frame: 0 inside or on it.
+    ///
+    /// ```
+    /// use workcell::geometry::{ConvexPolygon, Vec2};
+    /// let square = ConvexPolygon::rectangle(2.0, 2.0)?; // corners at (±1, ±1)
+    /// assert_eq!(square.distance_to(&Vec2::new(0.5, 0.0)), 0.0);
+    /// assert!((square.distance_to(&Vec2::new(3.0, 0.0)) - 2.0).abs() < 1e-12);
+    /// assert!((square.distance_to(&Vec2::new(4.0, 5.0)) - 5.0).abs() < 1e-12); // to the corner
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn distance_to(&self, p: &Vec2) -> f64 {
+        let v = &self.vertices;
+        let n = v.len();
+        let mut inside = true;
+        let mut best = f64::INFINITY;
+        for i in 0..n {
+            let (a, b) = (v[i], v[(i + 1) % n]);
+            // Counter-clockwise: inside is left of every edge.
+            inside &= cross(&(b - a), &(p - a)) >= 0.0;
+            let u = project_on_segment(p, &a, &b);
+            best = best.min((a + (b - a) * u - p).norm());
+        }
+        if inside {
+            0.0
+        } else {
+            best
+        }
+    }
 }
 
 /// The turn at `c` between edges `p → c` and `c → q`: its sine (left positive) and whether

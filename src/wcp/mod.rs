@@ -36,7 +36,8 @@ pub(crate) use configurations::configurations_found;
 pub use configurations::{task_configurations, Assignment, Configuration, Configurations};
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
-    describe, solve, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved,
+    describe, place, solve, uncertified, unresolved, Iteration, Remedy, RemedyKind, RemedyLeg,
+    Solved, HEMMED_IN,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,

@@ -42,7 +42,8 @@ fn one_iteration_is_singular() {
         assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
         let out = text(&o.stdout);
         assert!(
-            out.contains("within 1 iteration;") || out.contains("within 1 round;"),
+            out.contains("the limit of 1 round ran out;")
+                || out.contains("to the limit of 1 round;"),
             "{out}"
         );
     }

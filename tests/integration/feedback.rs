@@ -410,3 +410,79 @@ fn a_first_schedule_left_undecided_is_reported_not_a_panic() {
         assert!(failure.contains("work budget"), "{feedback:?}: {failure}");
     }
 }
+
+/// Two robots that must swap the ends of a closed corridor one robot wide: no schedule
+/// exists, and the failure says so plainly, naming the two robots, the walls that hem them
+/// in and what was exhausted; so does the greedy loop's at its limit of rounds.
+#[test]
+fn a_swap_in_a_closed_corridor_names_the_blockers_and_the_place() {
+    let text = r#"{
+      "delta": 0.01,
+      "robots": [
+        {"name": "R1", "shape": [[-0.3, -0.3], [0.3, -0.3], [0.3, 0.3], [-0.3, 0.3]],
+         "home": [2, 0, 0], "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.0},
+        {"name": "R2", "shape": [[-0.3, -0.3], [0.3, -0.3], [0.3, 0.3], [-0.3, 0.3]],
+         "home": [8, 0, 0], "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.0}
+      ],
+      "obstacles": [
+        {"name": "wall-south", "shape": [[-1, -1.5], [11, -1.5], [11, -0.5], [-1, -0.5]]},
+        {"name": "wall-north", "shape": [[-1, 0.5], [11, 0.5], [11, 1.5], [-1, 1.5]]},
+        {"name": "cap-west", "shape": [[-1, -0.5], [0, -0.5], [0, 0.5], [-1, 0.5]]},
+        {"name": "cap-east", "shape": [[10, -0.5], [11, -0.5], [11, 0.5], [10, 0.5]]}
+      ],
+      "tasks": [
+        {"name": "east-end", "at": [9.3, 0, 0], "duration": 1, "robots": ["R1"]},
+        {"name": "west-end", "at": [0.7, 0, 0], "duration": 1, "robots": ["R2"]}
+      ]
+    }"#;
+    let cell = parse_cell(text, Path::new("swap-cell.json")).unwrap().cell;
+    let greedy = SolveOptions {
+        feedback: Feedback::Greedy,
+        max_iterations: 5,
+        ..SolveOptions::default()
+    };
+    for (opts, exhausted) in [
+        (
+            SolveOptions::default(),
+            "no remedy clears the first schedule's collision",
+        ),
+        (greedy, "the limit of 5 rounds ran out"),
+    ] {
+        let solved = solve_with(&cell, &opts);
+        assert!(!solved.collision_free);
+        let failure = solved.failure.unwrap();
+        assert!(failure.starts_with(exhausted), "{failure}");
+        assert!(
+            failure.contains("R1 and R2 block each other at (")
+                && failure.contains("between wall-north and wall-south"),
+            "{failure}"
+        );
+    }
+}
+
+/// A search that fails says which of its budgets ran out, and never a limit it did not
+/// reach: the rounds when every line of remedies reached them, the schedules when those ran
+/// out first (the junction needs more of both).
+#[test]
+fn a_failed_search_names_the_budget_it_exhausted() {
+    let cell = conflict_cell(ConflictKind::Junction, 0);
+    let rounds = SolveOptions {
+        max_iterations: 3,
+        ..SolveOptions::default()
+    };
+    let mut nodes = SolveOptions::default();
+    nodes.search.max_nodes = 10;
+    for (opts, exhausted) in [
+        (
+            rounds,
+            "every line of remedies was followed to the limit of 3 rounds;",
+        ),
+        (nodes, "the search's budget of 10 schedules ran out;"),
+    ] {
+        let solved = solve_with(&cell, &opts);
+        let failure = solved.failure.unwrap();
+        assert!(failure.starts_with(exhausted), "{failure}");
+        assert!(failure.contains(" block each other at ("), "{failure}");
+        assert!(!failure.contains("200"), "{failure}");
+    }
+}

@@ -3,7 +3,7 @@
 //! node, and the choice is never revisited. Kept as `--feedback greedy`, to compare the
 //! search against.
 
-use super::outcome::describe;
+use super::outcome::{blockers, describe};
 use super::outcome::{build, Iteration, Remedy, Solved};
 use crate::cell::{Cell, InputError};
 use crate::collision::{CheckReport, Verdict};
@@ -42,28 +42,26 @@ pub fn solve(
     loop {
         let round = greedy.check_round()?;
         let Some(c) = round.collision.clone() else {
-            let failure = match round.report.verdict() {
-                Verdict::Contact { .. } => Some(
-                    "internal error: the checker's first contact names no body of the cell"
-                        .to_owned(),
-                ),
-                verdict => {
-                    (!verdict.is_certified_free()).then(|| super::uncertified(&round.report))
-                }
-            };
+            let failure = (!round.report.verdict().is_certified_free())
+                .then(|| super::unresolved(&round.report));
             return Ok(greedy.finish(round, None, failure, &blind));
         };
         if greedy.iterations.len() + 1 >= opts.max_iterations {
             let failure = format!(
-                "no collision-free schedule within {} iteration{}; the last one collides: {}",
+                "the limit of {} round{} ran out; {}; the last schedule collides: {}",
                 opts.max_iterations,
                 if opts.max_iterations == 1 { "" } else { "s" },
+                blockers(cell, &c),
                 describe(cell, &c)
             );
             return Ok(greedy.finish(round, None, Some(failure), &blind));
         }
         let Some(next) = greedy.best_remedy(&c, &round.schedule)? else {
-            let failure = format!("no remedy for the collision: {}", describe(cell, &c));
+            let failure = format!(
+                "no remedy clears the collision; {}; the last schedule collides: {}",
+                blockers(cell, &c),
+                describe(cell, &c)
+            );
             return Ok(greedy.finish(round, None, Some(failure), &blind));
         };
         greedy.iterations.push(Iteration {

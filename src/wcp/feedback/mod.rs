@@ -14,7 +14,10 @@ mod reconfigure;
 mod remedies;
 mod search;
 
-pub use outcome::{describe, uncertified, Iteration, Remedy, RemedyKind, RemedyLeg, Solved};
+pub use outcome::{
+    describe, place, uncertified, unresolved, Iteration, Remedy, RemedyKind, RemedyLeg, Solved,
+    HEMMED_IN,
+};
 
 use super::choose::choose_configurations;
 use super::options::{Feedback, SolveOptions};

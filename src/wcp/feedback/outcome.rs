@@ -263,6 +263,84 @@ pub fn uncertified(report: &CheckReport) -> String {
     }
 }
 
+/// Where a collision between two robots happens, for a reader who must change the cell:
+/// its point, and the fixtures that hem it in (those within [`HEMMED_IN`] times the two
+/// robots' radii of it, nearest first, at most two): `at (2.10, 3.00), between block-1 and
+/// block-2`. An obstacle collision is placed by its point only.
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::planning::PlannerOptions;
+/// use workcell::wcp::{place, legs::default_legs, MoveStore, Schedule};
+/// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+/// let store = MoveStore::new(&cell, &PlannerOptions::default());
+/// let schedule = Schedule::build(&cell, &[vec![1, 0, 2], vec![3]], &default_legs(2), &store).unwrap();
+/// let report = check(&schedule.scene(&cell), &CheckOptions::default());
+/// let c = schedule.collision(&cell, &report).expect("a collision");
+/// let place = place(&cell, &c); // at the weld next to the fixture
+/// assert!(place.starts_with("at (") && place.ends_with("), beside fixture"), "{place}");
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn place(cell: &Cell, c: &Collision) -> String {
+    let at = format!("at ({:.2}, {:.2})", c.point.x, c.point.y);
+    let Some(b) = c.robots.1 else {
+        return at;
+    };
+    let reach = HEMMED_IN * (cell.robots[c.robots.0].body_radius() + cell.robots[b].body_radius());
+    let mut near: Vec<(f64, &str)> = cell
+        .obstacles
+        .iter()
+        .map(|o| {
+            let parts = o.parts.as_ref().map(|p| p.parts());
+            let d = (parts.unwrap_or(std::slice::from_ref(&o.shape)).iter())
+                .map(|p| p.distance_to(&c.point))
+                .fold(f64::INFINITY, f64::min);
+            (d, o.name.as_str())
+        })
+        .filter(|(d, _)| *d <= reach)
+        .collect();
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(b.1)));
+    match near.as_slice() {
+        [] => at,
+        [(_, one)] => format!("{at}, beside {one}"),
+        [(_, one), (_, two), ..] => format!("{at}, between {one} and {two}"),
+    }
+}
+
+/// Who blocks whom, and where: `R1 and R2 block each other at (5.00, 0.30), between
+/// wall-north and wall-south`, or `R1 hits pillar at (…)`.
+pub(super) fn blockers(cell: &Cell, c: &Collision) -> String {
+    let [a, b] = &c.bodies;
+    match c.robots.1 {
+        Some(_) => format!("{a} and {b} block each other {}", place(cell, c)),
+        None => format!("{a} hits {b} {}", place(cell, c)),
+    }
+}
+
+/// Fixtures this many times the two robots' radii from a collision hem it in.
+pub const HEMMED_IN: f64 = 1.0;
+
+/// Why a schedule in which no collision was named is not certified: [`uncertified`], or a
+/// contact the checker reports between bodies the schedule does not know (a defect of ours).
+///
+/// ```
+/// use workcell::collision::{check, CheckOptions};
+/// use workcell::wcp::{unresolved, uncertified};
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/near-miss.json");
+/// let scene = workcell::cell::load_scene(path.as_ref())?.scene;
+/// let report = check(&scene, &CheckOptions { max_work_per_pair: 1, ..CheckOptions::default() });
+/// assert_eq!(unresolved(&report), uncertified(&report));
+/// # Ok::<(), workcell::cell::InputError>(())
+/// ```
+pub fn unresolved(report: &CheckReport) -> String {
+    match report.verdict() {
+        Verdict::Contact { .. } => {
+            "internal error: the checker's first contact names no body of the cell".to_owned()
+        }
+        _ => uncertified(report),
+    }
+}
+
 /// One line about a collision: `R1 (move weld-1 -> weld-2) and R2 (task weld-5) at t = 3.2`.
 ///
 /// ```

@@ -2,7 +2,7 @@
 //! the schedule being changed ([`View`]), which robot yields to which ([`Side`]), and the
 //! helpers that find a leg's window, its nodes and pieces, and make the changed schedule.
 
-use crate::cell::{Cell, RobotKind};
+use crate::cell::Cell;
 use crate::geometry::{closest_features, convex_hull, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::planning::PlannedMove;
 use crate::wcp::feedback::clearing::{clears, least};
@@ -265,12 +265,7 @@ pub(super) fn apart(
 /// How far a robot's body reaches from the point it is placed by: a rigid robot's radius;
 /// an arm's largest link radius (about its joint).
 pub(super) fn body_radius(cell: &Cell, r: usize) -> f64 {
-    match &cell.robots[r].kind {
-        RobotKind::Rigid(robot) => robot.shape.radius(),
-        RobotKind::Arm(arm) => (arm.links.iter())
-            .map(|(_, body)| body.hull().radius())
-            .fold(0.0, f64::max),
-    }
+    cell.robots[r].body_radius()
 }
 
 /// Leg `old` with its piece `k` cut into `first`, a pause of `d`, and `second`, both at

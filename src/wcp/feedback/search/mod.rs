@@ -89,9 +89,25 @@ struct Outcome {
     collision: Option<Collision>,
 }
 
+/// What a node's schedule is, by the checker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Status {
+    /// Certified collision-free: a candidate answer.
+    Free,
+    /// Two bodies collide: the node is expanded.
+    Collides,
+    /// Neither proven free nor shown to collide (a graze of δ, the checker's work budget):
+    /// a dead end, reported as the greedy loop reports it when nothing better is found.
+    Undecided,
+}
+
 impl Outcome {
-    fn certified_free(&self) -> bool {
-        self.collision.is_none() && self.report.verdict().is_certified_free()
+    fn status(&self) -> Status {
+        match (&self.collision, self.report.verdict().is_certified_free()) {
+            (Some(_), _) => Status::Collides,
+            (None, true) => Status::Free,
+            (None, false) => Status::Undecided,
+        }
     }
 }
 
@@ -162,6 +178,8 @@ struct Search<'a> {
     best_at: usize,
     /// The colliding node whose first collision came latest.
     furthest: Option<usize>,
+    /// Colliding nodes left unexpanded at the limit of rounds.
+    capped: usize,
 }
 
 /// Solves the cell by searching over remedies (see the module documentation).
@@ -191,6 +209,7 @@ pub(super) fn solve(
         best: None,
         best_at: 0,
         furthest: None,
+        capped: 0,
     };
     let legs = default_legs(cell.robots.len());
     search
@@ -240,6 +259,8 @@ pub(super) fn solve(
         }
         if search.nodes[id].depth + 1 < opts.max_iterations {
             search.expand(id, progress);
+        } else {
+            search.capped += 1;
         }
     }
     let (id, failure) = search.outcome(stop);
@@ -282,30 +303,42 @@ impl Search<'_> {
     }
 
     /// The node the search answers with, and why it is not collision-free if it is not: the
-    /// best certified node, or else the one that got furthest (`stop`: the budget that ended
-    /// the search, none when it ran out of nodes).
+    /// best certified node, or else the one that got furthest, with what was exhausted
+    /// (`stop`: the budget that ended the search, none when it ran out of nodes), the robots
+    /// that block each other and where.
     fn outcome(&self, stop: Option<String>) -> (usize, Option<String>) {
         if let Some(id) = self.best {
             return (id, None);
         }
         // No node collides and none is certified: the first schedule itself could be
-        // neither proven free nor shown to collide (a graze, or the checker's work budget).
+        // neither proven free nor shown to collide.
         let Some(id) = self.furthest else {
             let report = &self.nodes[0].outcome.as_ref().expect("checked").report;
-            return (0, Some(super::uncertified(report)));
+            return (0, Some(super::unresolved(report)));
         };
         let c = self.collision(id).expect("a colliding node");
         let max_iterations = self.opts.max_iterations;
-        let why = match stop {
-            Some(budget) => format!("no collision-free schedule within {budget}"),
-            None => format!(
-                "no remedy separates the robots within {} round{}",
-                max_iterations,
+        let deepest = (self.nodes.iter())
+            .filter(|n| n.outcome.is_some())
+            .map(|n| n.depth)
+            .max()
+            .unwrap_or(0);
+        let exhausted = match stop {
+            Some(budget) => format!("{budget} ran out"),
+            None if self.capped > 0 => format!(
+                "every line of remedies was followed to the limit of {max_iterations} round{}",
                 if max_iterations == 1 { "" } else { "s" }
+            ),
+            None if deepest == 0 => "no remedy clears the first schedule's collision".to_owned(),
+            None => format!(
+                "every remedy was tried ({} schedules checked, over up to {deepest} round{})",
+                self.checked,
+                if deepest == 1 { "" } else { "s" }
             ),
         };
         let failure = format!(
-            "{why}; the schedule that got furthest collides: {}",
+            "{exhausted}; {}; the schedule that got furthest collides: {}",
+            super::outcome::blockers(self.cell, c),
             super::describe(self.cell, c)
         );
         (id, Some(failure))
@@ -371,25 +404,25 @@ impl Search<'_> {
                 self.nodes[id].makespan,
                 outcome.collision.as_ref(),
             );
-            let free = outcome.certified_free();
-            let colliding = outcome.collision.is_some();
+            let status = outcome.status();
             self.nodes[id].outcome = Some(outcome);
-            if free {
-                if self.worth(id) {
+            match status {
+                Status::Free if self.worth(id) => {
                     self.best = Some(id);
                     self.best_at = self.checked;
                 }
-            } else if colliding {
-                let t = self.collision(id).map(|c| c.time);
-                let later = self
-                    .furthest
-                    .and_then(|f| self.collision(f).map(|c| c.time))
-                    .is_none_or(|best| t.is_some_and(|t| t > best));
-                if later {
-                    self.furthest = Some(id);
+                Status::Free | Status::Undecided => {}
+                Status::Collides => {
+                    let t = self.collision(id).map(|c| c.time);
+                    let later = self
+                        .furthest
+                        .and_then(|f| self.collision(f).map(|c| c.time))
+                        .is_none_or(|best| t.is_some_and(|t| t > best));
+                    if later {
+                        self.furthest = Some(id);
+                    }
                 }
             }
-            // Otherwise a graze the checker can neither prove nor refute: a dead end.
         }
     }
 
