@@ -111,6 +111,22 @@ fn every_conflict_family_is_solved_without_divergence() {
             ConflictKind::Junction => 0.40,
             _ => f64::INFINITY,
         };
+        // And no longer than the search's answer when this test was written (ceilings, not
+        // pins: a better search passes; a worse ranking of children fails at the junction).
+        let ceiling = match kind {
+            ConflictKind::CorridorNarrow => 42.812,
+            ConflictKind::CorridorWide => 31.035,
+            ConflictKind::Junction => 36.765,
+            ConflictKind::Doorway => 30.988,
+            ConflictKind::HomeInWay => 21.286,
+            ConflictKind::Workpiece => 23.987,
+        };
+        assert!(
+            solved.schedule.makespan <= ceiling + 1e-3,
+            "{}: {:.3} above {ceiling}",
+            kind.name(),
+            solved.schedule.makespan
+        );
         assert!(
             overhead(&solved) <= target,
             "{}: {:.3}",
@@ -335,9 +351,9 @@ fn the_search_is_the_same_on_one_two_and_four_threads() {
     assert_eq!(one, run(2), "and again");
 }
 
-/// On a cell of 100 to 199 tasks a re-sequencing is a local repair (`search.rs`,
-/// `LOCAL_RESEQUENCE_FROM_TASKS`): `workpiece-3` (10 robots, 100 tasks) reaches the README's
-/// 21.50 after 114 schedules; with full-length re-sequencings it checks 58.
+/// On a cell of 100 to 199 tasks a re-sequencing is a local repair (`search/pending.rs`,
+/// `LOCAL_RESEQUENCE_FROM_TASKS`): `workpiece-3` (10 robots, 100 tasks) reaches the
+/// benchmarks' 21.50 within 114 schedules (a ceiling on the work, not a pin).
 #[test]
 fn a_resequencing_on_a_hundred_task_cell_is_a_local_repair() {
     let solved = solve(&conflict_cell(ConflictKind::Workpiece, 3));
@@ -347,7 +363,7 @@ fn a_resequencing_on_a_hundred_task_cell_is_a_local_repair() {
         "{}",
         solved.schedule.makespan
     );
-    assert_eq!(solved.nodes, 114);
+    assert!(solved.nodes <= 114, "{} schedules checked", solved.nodes);
 }
 
 /// `patience` ends the search once it stops paying, and only ends it sooner: the answer is
@@ -484,5 +500,22 @@ fn a_failed_search_names_the_budget_it_exhausted() {
         assert!(failure.starts_with(exhausted), "{failure}");
         assert!(failure.contains(" block each other at ("), "{failure}");
         assert!(!failure.contains("200"), "{failure}");
+    }
+}
+
+/// Doorways that a worse search leaves without a schedule (children ranked by the earlier
+/// collision instead of the later: 3, 4, 7 and 8 unsolved): each is solved, no longer than
+/// when this test was written.
+#[test]
+fn the_doorways_a_weaker_search_loses_are_solved() {
+    for (k, ceiling) in [(3, 39.988), (4, 42.125), (7, 36.539), (8, 40.416)] {
+        let cell = conflict_cell(ConflictKind::Doorway, k);
+        let solved = solve(&cell);
+        assert!(solved.collision_free, "doorway {k}: {:?}", solved.failure);
+        assert!(
+            solved.schedule.makespan <= ceiling + 1e-3,
+            "doorway {k}: {:.3} above {ceiling}",
+            solved.schedule.makespan
+        );
     }
 }

@@ -152,6 +152,38 @@ mod tests {
     use super::super::context::TestCell;
     use super::*;
 
+    /// A parking pose keeps 2δ of clearance from where the other robot passes, as the
+    /// checker's δ needs on both sides: a pose only δ beyond the two radii is refused, one
+    /// 3δ beyond them taken.
+    #[test]
+    fn a_parking_pose_keeps_two_deltas_from_the_other_robot() {
+        let (delta, half, other) = (0.01, 0.5, 0.2);
+        let (rx, ry) = (half * 2f64.sqrt(), other * 2f64.sqrt());
+        // The first ring's pose due east of home is at 2 rx.
+        let east = Vec2::new(2.0 * rx, 0.0);
+        for (gap, taken) in [(delta, false), (3.0 * delta, true)] {
+            let y = east.x + rx + ry + gap;
+            let text = format!(
+                r#"{{"delta": {delta}, "robots": [
+                {{"name": "X", "shape": [[-{half}, -{half}], [{half}, -{half}], [{half}, {half}], [-{half}, {half}]],
+                  "home": [0, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}},
+                {{"name": "Y", "shape": [[-{other}, -{other}], [{other}, -{other}], [{other}, {other}], [-{other}, {other}]],
+                  "home": [{y}, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}}],
+                "obstacles": [],
+                "tasks": [{{"name": "t", "at": [-3, 0], "duration": 1}}]}}"#
+            );
+            let test = TestCell::new(&text, vec![vec![], vec![]]);
+            let home = test.cell.rigid(0).home;
+            let poses = parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0));
+            let found = poses.iter().any(|p| (p.pos - east).norm() < 1e-9);
+            assert_eq!(found, taken, "Y {gap} beyond the radii");
+            assert!(
+                poses.iter().any(|p| (p.pos + east).norm() < 1e-9),
+                "west is free"
+            );
+        }
+    }
+
     /// A gripper may park with a post between its fingers, where its hull would not fit.
     #[test]
     fn a_robot_of_parts_parks_where_its_parts_fit() {

@@ -29,6 +29,7 @@
 //! that reaches it may differ from run to run). Without any certified schedule, the search
 //! reports the schedule whose first collision came latest, and that collision.
 
+mod order;
 mod pending;
 
 use super::fingerprint::fingerprint;
@@ -43,8 +44,9 @@ use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
 use crate::wcp::sequence::sequence_with;
 use crate::wcp::sequencer::{self, Conflict};
+use order::{Key, Ordered, Rank};
 use rayon::prelude::*;
-use std::cmp::{Ordering, Reverse};
+use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::sync::Arc;
 use std::time::Instant;
@@ -110,28 +112,6 @@ impl Outcome {
         }
     }
 }
-
-/// A total order on f64 keys.
-#[derive(Clone, Copy, PartialEq)]
-struct Ordered(f64);
-
-impl Eq for Ordered {}
-
-impl PartialOrd for Ordered {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Ordered {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.0.total_cmp(&other.0)
-    }
-}
-
-/// Queue order, smallest first: discrepancies, depth of the last one, minus the depth,
-/// makespan, and the node's index (older first).
-type Key = (usize, usize, Reverse<usize>, Ordered, usize);
 
 /// Two makespans closer than this (relative) are the same: a node must beat the bound by
 /// more to be worth checking.
@@ -570,15 +550,13 @@ impl Search<'_> {
     /// Ranks checked children, best first: the best continues the parent's line, every other
     /// one is a discrepancy; the colliding ones are queued.
     fn rank_and_queue(&mut self, made: Vec<usize>, depth: usize) {
-        let later = |k: usize| self.collision(k).map_or(f64::INFINITY, |c| c.time);
+        let rank = |k: usize| Rank {
+            makespan: self.nodes[k].makespan,
+            collision: self.collision(k).map(|c| c.time),
+            id: k,
+        };
         let mut ranked: Vec<usize> = made;
-        ranked.sort_by(|&a, &b| {
-            let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-            na.makespan
-                .total_cmp(&nb.makespan)
-                .then(later(b).total_cmp(&later(a)))
-                .then(a.cmp(&b))
-        });
+        ranked.sort_by(|&a, &b| rank(a).cmp_children(&rank(b)));
         for &k in ranked.iter().skip(1) {
             self.nodes[k].discrepancies += 1;
             self.nodes[k].deviated_at = depth;
