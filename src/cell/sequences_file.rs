@@ -59,6 +59,7 @@ const RESULT_KEYS: &[&str] = &[
     "configurations",
     "iterations",
     "schedules_checked",
+    "found_after",
     "waits",
     "legs",
     "blind_sequences",

@@ -1,13 +1,16 @@
 //! Cells whose robots get in each other's way, for the feedback loop and its benchmark.
 //!
-//! Six families, each built so that the collision-blind best schedule collides and some
-//! remedy separates the robots: corridor swaps (narrow: one robot at a time; wide: room to
-//! pass side by side), a four-arm junction whose robots work beside each other's homes, a
-//! doorway into a closed room that several robots must pass, a home that lies in another
-//! robot's only way (a dead-end corridor), and a workpiece whose welds neighbouring robots
-//! share. Robots are squares of side 0.7 with the limits of the shipped cells; δ = 0.01.
-//! Every document is a cell in the contract's format (section 3), deterministic in
-//! (family, seed, index).
+//! Eight families, each built so that the collision-blind best schedule collides (a ring of
+//! three robots may not): corridor
+//! swaps (narrow: one robot at a time; wide: room to pass side by side), a four-arm junction
+//! whose robots work beside each other's homes, a doorway into a closed room that several
+//! robots must pass, a home that lies in another robot's only way (a dead-end corridor), a
+//! workpiece whose welds neighbouring robots share, closed ring corridors one robot wide
+//! (robots that can never pass each other, only move round together) and a grid of aisles
+//! that robots cross to far tasks. Every family but the rings is solved by one robot
+//! yielding to another; the rings ask for a group to move at once (a convoy). Robots are
+//! squares of side 0.7 with the limits of the shipped cells; δ = 0.01. Every document is a
+//! cell in the contract's format (section 3), deterministic in (family, seed, index).
 
 use super::mix;
 use rand::{Rng, SeedableRng};
@@ -37,17 +40,28 @@ pub enum ConflictKind {
     /// robot along its sides (up to 120), each weld allowed to the two nearest robots of its
     /// side: neighbours working near their common border collide.
     Workpiece,
+    /// 3 + (k / 2) mod 6 robots (3 to 8) on a closed ring corridor 1.05 wide round a central
+    /// block, square for even k, a long oval (a long rectangle) for odd k; each robot's one
+    /// task lies past the next one or two robots' homes, clockwise for some robots and
+    /// counter-clockwise for others. Robots on a ring never pass each other.
+    Ring,
+    /// 6 + k mod 3 robots at the mouths of the aisles of a 3 × 3 grid of blocks, aisles 1.3
+    /// wide (one robot at a time); each robot has a task past the far mouth of its aisle and
+    /// one at the middle of a crossing aisle.
+    Aisles,
 }
 
 impl ConflictKind {
     /// Every family, in documentation order.
-    pub const ALL: [ConflictKind; 6] = [
+    pub const ALL: [ConflictKind; 8] = [
         ConflictKind::CorridorNarrow,
         ConflictKind::CorridorWide,
         ConflictKind::Junction,
         ConflictKind::Doorway,
         ConflictKind::HomeInWay,
         ConflictKind::Workpiece,
+        ConflictKind::Ring,
+        ConflictKind::Aisles,
     ];
 
     /// The name on the command line and in file names, e.g. `corridor-narrow`.
@@ -59,6 +73,8 @@ impl ConflictKind {
             ConflictKind::Doorway => "doorway",
             ConflictKind::HomeInWay => "home-in-way",
             ConflictKind::Workpiece => "workpiece",
+            ConflictKind::Ring => "ring",
+            ConflictKind::Aisles => "aisles",
         }
     }
 
@@ -109,6 +125,8 @@ pub fn generate_conflict_cell(kind: ConflictKind, seed: u64, index: u64) -> Valu
         ConflictKind::Doorway => doorway(&mut cell, &mut rng, 4 + k % 5),
         ConflictKind::HomeInWay => home_in_way(&mut cell, &mut rng, k % 3),
         ConflictKind::Workpiece => workpiece(&mut cell, &mut rng, 4 + 2 * (k % 5)),
+        ConflictKind::Ring => ring(&mut cell, &mut rng, 3 + (k / 2) % 6, k % 2 == 1),
+        ConflictKind::Aisles => aisles(&mut cell, &mut rng, 6 + k % 3),
     }
     cell.document()
 }
@@ -324,6 +342,162 @@ fn workpiece(cell: &mut CellDoc, rng: &mut ChaCha8Rng, robots: usize) {
     }
 }
 
+/// Width of a ring's corridor: one robot (0.7) with room to move, never two.
+const RING_WIDTH: f64 = 1.05;
+// Two robots side by side, each δ = 0.01 clear, would need 4 HALF + 2 δ.
+const _: () = assert!(RING_WIDTH > 2.0 * HALF && RING_WIDTH < 4.0 * HALF + 0.02);
+/// Arc length between two robots' homes along a ring's centre line.
+const RING_SPACING: f64 = 2.6;
+
+/// The point at arc length `s` along the centre line of a rectangular ring of half sizes
+/// (a, b), counter-clockwise from its bottom right corner.
+fn along_ring(a: f64, b: f64, s: f64) -> (f64, f64) {
+    let s = s.rem_euclid(4.0 * (a + b));
+    let sides = [
+        (2.0 * b, (a, -b), (0.0, 1.0)),
+        (2.0 * a, (a, b), (-1.0, 0.0)),
+        (2.0 * b, (-a, b), (0.0, -1.0)),
+        (2.0 * a, (-a, -b), (1.0, 0.0)),
+    ];
+    let mut left = s;
+    for (length, (x, y), (dx, dy)) in sides {
+        if left <= length {
+            return (x + dx * left, y + dy * left);
+        }
+        left -= length;
+    }
+    (a, -b)
+}
+
+/// A closed ring corridor round a central block, `robots` on its centre line; an oval ring
+/// is a long thin rectangle, a square one a square.
+fn ring(cell: &mut CellDoc, rng: &mut ChaCha8Rng, robots: usize, oval: bool) {
+    let perimeter = RING_SPACING * robots as f64;
+    // Half sizes of the centre line: perimeter 4 (a + b).
+    let (a, b) = if oval {
+        let b = 1.2;
+        ((perimeter / 4.0 - b).max(3.0), b)
+    } else {
+        let a = (perimeter / 8.0).max(1.6);
+        (a, a)
+    };
+    let (h, wall) = (RING_WIDTH / 2.0, 1.0);
+    cell.block("centre", -(a - h), -(b - h), a - h, b - h);
+    cell.block(
+        "wall-north",
+        -(a + h + wall),
+        b + h,
+        a + h + wall,
+        b + h + wall,
+    );
+    cell.block(
+        "wall-south",
+        -(a + h + wall),
+        -(b + h),
+        a + h + wall,
+        -(b + h + wall),
+    );
+    cell.block("wall-east", a + h, -(b + h), a + h + wall, b + h);
+    cell.block("wall-west", -(a + h), -(b + h), -(a + h + wall), b + h);
+    let spacing = 4.0 * (a + b) / robots as f64;
+    let offset = rng.random_range(0.0..spacing);
+    let homes: Vec<f64> = (0..robots).map(|i| offset + spacing * i as f64).collect();
+    let names: Vec<String> = (homes.iter())
+        .map(|&s| {
+            let (x, y) = along_ring(a, b, s);
+            cell.robot(x, y)
+        })
+        .collect();
+    let mut used = vec![0; robots];
+    for (i, owner) in names.iter().enumerate() {
+        // Mixed directions: the first robot counter-clockwise, the second clockwise.
+        let dir = match i {
+            0 => 1.0,
+            1 => -1.0,
+            _ if rng.random_bool(0.5) => 1.0,
+            _ => -1.0,
+        };
+        let past: usize = if robots >= 4 {
+            rng.random_range(1..=2)
+        } else {
+            1
+        };
+        // In the gap between two homes past which it lies (gaps numbered by the home that
+        // starts them counter-clockwise); a gap's first task a third of the way along it,
+        // its second two thirds, so that no two tasks meet.
+        let gap = |past: usize| {
+            let ahead = if dir > 0.0 {
+                i + past
+            } else {
+                i + robots - past - 1
+            };
+            ahead % robots
+        };
+        let g = [past, 3 - past]
+            .into_iter()
+            .filter(|&p| p <= robots - 2)
+            .map(gap)
+            .find(|&g| used[g] < 2)
+            .unwrap_or(gap(past));
+        let fraction = [1.0 / 3.0, 2.0 / 3.0][used[g].min(1)];
+        used[g] += 1;
+        let (x, y) = along_ring(a, b, homes[g] + spacing * fraction);
+        let d = duration(rng);
+        cell.task(format!("{owner}-weld-1"), x, y, d, &[owner]);
+    }
+}
+
+/// Blocks in a 3 × 3 grid with aisles 1.3 wide between them; the robots wait at aisle
+/// mouths outside the grid.
+fn aisles(cell: &mut CellDoc, rng: &mut ChaCha8Rng, robots: usize) {
+    let (aisle, size) = (1.3, rng.random_range(3.0..4.0f64).round());
+    let pitch = size + aisle;
+    for i in -1..=1 {
+        for j in -1..=1 {
+            let (cx, cy) = (pitch * i as f64, pitch * j as f64);
+            let name = format!("block-{}-{}", i + 2, j + 2);
+            let s = size / 2.0;
+            cell.block(&name, cx - s, cy - s, cx + s, cy + s);
+        }
+    }
+    // The four inner aisles, each with a mouth at both ends: (mouth, unit way in).
+    let (c, out) = (pitch / 2.0, 1.5 * pitch + 1.0);
+    let mut mouths: Vec<((f64, f64), (f64, f64))> = Vec::new();
+    for lane in [-c, c] {
+        mouths.push(((-out, lane), (1.0, 0.0)));
+        mouths.push(((out, lane), (-1.0, 0.0)));
+        mouths.push(((lane, -out), (0.0, 1.0)));
+        mouths.push(((lane, out), (0.0, -1.0)));
+    }
+    let mut order: Vec<usize> = (0..mouths.len()).collect();
+    for k in (1..order.len()).rev() {
+        order.swap(k, rng.random_range(0..=k));
+    }
+    for &m in order.iter().take(robots) {
+        let ((x, y), (ux, uy)) = mouths[m];
+        let owner = cell.robot(x, y);
+        // Past the far mouth, beside where a robot may wait there.
+        let (fx, fy) = (x + ux * (2.0 * out + 1.2), y + uy * (2.0 * out + 1.2));
+        let d = duration(rng);
+        cell.task(
+            format!("{owner}-weld-1"),
+            fx + uy * 1.0,
+            fy - ux * 1.0,
+            d,
+            &[&owner],
+        );
+        // In a crossing aisle, beside the centre block (between it and a side block).
+        let side = if rng.random_bool(0.5) { c } else { -c };
+        let shift = (rng.random_range(-8..=8) as f64) / 10.0;
+        let (tx, ty) = if ux != 0.0 {
+            (side, shift)
+        } else {
+            (shift, side)
+        };
+        cell.task(format!("{owner}-weld-2"), tx, ty, d, &[&owner]);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -362,5 +536,61 @@ mod tests {
         assert_eq!(count(ConflictKind::Doorway, 4), (8, 16));
         assert_eq!(count(ConflictKind::Junction, 1), (4, 8));
         assert_eq!(count(ConflictKind::HomeInWay, 0).1, 2);
+        assert_eq!(count(ConflictKind::Ring, 0), (3, 3));
+        assert_eq!(count(ConflictKind::Ring, 11), (8, 8));
+        assert_eq!(count(ConflictKind::Aisles, 2), (8, 16));
+    }
+
+    /// A ring's corridor takes one robot and never two side by side, every robot and task
+    /// sits on its centre line, each task lies past at least one other robot's home (in
+    /// both directions among the robots), and no two tasks meet.
+    #[test]
+    fn ring_robots_cannot_pass_and_their_tasks_lie_past_other_homes() {
+        let xy = |v: &Value| (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+        for k in 0..12 {
+            let doc = generate_conflict_cell(ConflictKind::Ring, 1, k);
+            let centre = doc["obstacles"][0]["shape"].as_array().unwrap();
+            let (a, b) = (
+                centre[2][0].as_f64().unwrap() + RING_WIDTH / 2.0,
+                centre[2][1].as_f64().unwrap() + RING_WIDTH / 2.0,
+            );
+            let on_line = |(x, y): (f64, f64)| {
+                let near = |p: f64, q: f64| (p - q).abs() < 1e-9;
+                (near(x.abs(), a) && y.abs() <= b + 1e-9)
+                    || (near(y.abs(), b) && x.abs() <= a + 1e-9)
+            };
+            let homes: Vec<(f64, f64)> = (doc["robots"].as_array().unwrap().iter())
+                .map(|r| xy(&r["home"]))
+                .collect();
+            let tasks: Vec<(f64, f64)> = (doc["tasks"].as_array().unwrap().iter())
+                .map(|t| xy(&t["at"]))
+                .collect();
+            assert!(homes.iter().chain(&tasks).all(|&p| on_line(p)), "ring {k}");
+            // Arc length along the centre line, as `along_ring` walks it.
+            let arc = |(x, y): (f64, f64)| -> f64 {
+                let sides = [
+                    ((x - a).abs() < 1e-9, y + b),
+                    ((y - b).abs() < 1e-9, 2.0 * b + (a - x)),
+                    ((x + a).abs() < 1e-9, 2.0 * b + 2.0 * a + (b - y)),
+                    (true, 4.0 * b + 2.0 * a + (x + a)),
+                ];
+                sides.into_iter().find(|s| s.0).unwrap().1
+            };
+            let perimeter = 4.0 * (a + b);
+            let spacing = perimeter / homes.len() as f64;
+            for (home, task) in homes.iter().zip(&tasks) {
+                let d = (arc(*task) - arc(*home)).rem_euclid(perimeter);
+                // Past the next home either way: beyond one spacing from its own.
+                assert!(
+                    d.min(perimeter - d) > spacing,
+                    "ring {k}: {home:?} {task:?}"
+                );
+            }
+            for (i, t) in tasks.iter().enumerate() {
+                for u in &tasks[..i] {
+                    assert!((t.0 - u.0).hypot(t.1 - u.1) > HALF, "ring {k}");
+                }
+            }
+        }
     }
 }

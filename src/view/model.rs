@@ -333,7 +333,7 @@ impl Model {
     ///     makespan: e.schedule.makespan, collision_free: e.collision_free, sequences, schedule,
     ///     configurations: vec![],
     ///     first_collision: e.collision.as_ref().map(|c| collision_json(&cell, c)),
-    ///     iterations: 1, schedules_checked: None, waits: vec![], legs: vec![], blind_sequences: None,
+    ///     iterations: 1, schedules_checked: None, found_after: None, waits: vec![], legs: vec![], blind_sequences: None,
     ///     blind_makespan: None, blind_optimal: None, feedback: vec![], failure: None,
     ///     check_stats: e.report.stats, stages_ms: e.times.into(),
     /// };

@@ -35,6 +35,10 @@ pub struct ResultJson<'a> {
     /// node checked for the search.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub schedules_checked: Option<usize>,
+    /// Schedules checked when the answer was found (solve, when it found one): the rest of
+    /// `schedules_checked` was spent looking for a better one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub found_after: Option<usize>,
     /// Waits of the final schedule, which `evaluate` applies when given this document.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub waits: Vec<WaitJson>,

@@ -101,7 +101,11 @@ fn overhead(solved: &Solved) -> f64 {
 
 #[test]
 fn every_conflict_family_is_solved_without_divergence() {
-    for kind in ConflictKind::ALL {
+    // Rings need a group to move at once: see `a_ring_is_solved_or_its_blockers_named`.
+    for kind in ConflictKind::ALL
+        .into_iter()
+        .filter(|k| *k != ConflictKind::Ring)
+    {
         let cell = conflict_cell(kind, 0);
         let solved = solve(&cell);
         // The targets, where it sets one: a narrow swap within 35 %, the junction
@@ -120,6 +124,8 @@ fn every_conflict_family_is_solved_without_divergence() {
             ConflictKind::Doorway => 30.988,
             ConflictKind::HomeInWay => 21.286,
             ConflictKind::Workpiece => 23.987,
+            ConflictKind::Aisles => 59.701,
+            ConflictKind::Ring => unreachable!("rings are left out"),
         };
         assert!(
             solved.schedule.makespan <= ceiling + 1e-3,
@@ -376,6 +382,10 @@ fn patience_ends_the_search_once_it_stops_paying() {
     let patient = solve_with(&cell, &opts);
     let checked = patient.nodes;
     assert!(patient.collision_free);
+    // It stopped once it had checked 300 schedules, and as many as the answer took, since
+    // the answer (`found_after`).
+    let found = patient.found_after.expect("an answer");
+    assert!(checked - found >= found.max(300), "{found} of {checked}");
     assert!(
         checked > 300 && checked < opts.search.max_nodes,
         "{checked}"
@@ -465,7 +475,7 @@ fn a_swap_in_a_closed_corridor_names_the_blockers_and_the_place() {
         (greedy, "the limit of 5 rounds ran out"),
     ] {
         let solved = solve_with(&cell, &opts);
-        assert!(!solved.collision_free);
+        assert!(!solved.collision_free && solved.found_after.is_none());
         let failure = solved.failure.unwrap();
         assert!(failure.starts_with(exhausted), "{failure}");
         assert!(
@@ -518,4 +528,39 @@ fn the_doorways_a_weaker_search_loses_are_solved() {
             solved.schedule.makespan
         );
     }
+}
+
+/// A ring corridor one robot wide: robots never pass each other. Each cell of `generate
+/// --kind ring` ends with a certified schedule, or with a failure that names the two robots
+/// blocking each other between the centre block and a wall and says what was exhausted;
+/// never a hang (each ends within the default budgets) and never a schedule that collides.
+#[test]
+fn a_ring_is_solved_or_its_blockers_named() {
+    let mut refused = 0;
+    for k in 0..6 {
+        let cell = conflict_cell(ConflictKind::Ring, k);
+        let solved = solve(&cell);
+        match &solved.failure {
+            None => assert_certified_within_limits(&cell, &solved),
+            Some(failure) => {
+                refused += 1;
+                assert!(!solved.collision_free);
+                assert!(
+                    failure.contains(" block each other at (")
+                        && (failure.contains("between centre and wall-")
+                            || failure.contains("between wall-")),
+                    "ring {k}: {failure}"
+                );
+                assert!(
+                    ["ran out", "every remedy was tried", "no remedy clears"]
+                        .iter()
+                        .any(|what| failure.contains(what)),
+                    "ring {k}: {failure}"
+                );
+            }
+        }
+    }
+    // Today only rings of three robots are solved (they need no remedy): four and more
+    // robots need a convoy, which the remedies cannot make yet.
+    assert!(refused <= 4, "{refused} of 6 refused");
 }

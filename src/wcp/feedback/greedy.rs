@@ -212,6 +212,7 @@ impl Greedy<'_> {
         });
         Solved {
             nodes: self.iterations.len(),
+            found_after: failure.is_none().then_some(self.iterations.len()),
             collision_free: failure.is_none(),
             legs: self.legs(&self.delays),
             routes: self.routes,

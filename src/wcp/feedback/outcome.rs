@@ -159,6 +159,10 @@ pub struct Solved {
     pub assignment: Assignment,
     /// Schedules checked: the rounds for the greedy loop, the search nodes for the search.
     pub nodes: usize,
+    /// Schedules checked when the answer was found (of [`Solved::nodes`]): the last for the
+    /// greedy loop; for the search, when its best certified schedule came (the rest was spent
+    /// looking for a better one); none when there is no certified answer.
+    pub found_after: Option<usize>,
     /// Wall time per stage.
     pub times: StageTimes,
 }

@@ -602,6 +602,7 @@ impl Search<'_> {
             assignment: self.prepared_of(id).moves.assignment().clone(),
             times: self.times,
             nodes: self.checked,
+            found_after: self.best.map(|_| self.best_at),
         }
     }
 }
