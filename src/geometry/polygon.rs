@@ -441,6 +441,27 @@ impl ConvexPolygon {
         self.radius
     }
 
+    /// The polygon's least width: the narrowest gap between two parallel lines that hold it
+    /// (attained with one line along an edge), the narrowest passage it can slide through.
+    ///
+    /// ```
+    /// use workcell::geometry::ConvexPolygon;
+    /// let plank = ConvexPolygon::rectangle(3.0, 0.5)?;
+    /// assert!((plank.min_width() - 0.5).abs() < 1e-12);
+    /// let triangle = ConvexPolygon::from_vertices(&[[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]])?;
+    /// assert!((triangle.min_width() - 2.0 / 5f64.sqrt()).abs() < 1e-12); // to the hypotenuse
+    /// # Ok::<(), workcell::geometry::PolygonError>(())
+    /// ```
+    pub fn min_width(&self) -> f64 {
+        let v = &self.vertices;
+        (0..v.len())
+            .map(|i| {
+                let n = &self.normals[i];
+                v.iter().map(|p| (v[i] - p).dot(n)).fold(0.0, f64::max)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Distance from point `p` to the polygon in its own frame: 0 inside or on it.
     ///
     /// ```

@@ -478,9 +478,13 @@ fn a_swap_in_a_closed_corridor_names_the_blockers_and_the_place() {
         assert!(!solved.collision_free && solved.found_after.is_none());
         let failure = solved.failure.unwrap();
         assert!(failure.starts_with(exhausted), "{failure}");
+        // The corridor is 1.00 wide, the two squares of 0.6 need 1.22 side by side.
         assert!(
             failure.contains("R1 and R2 block each other at (")
-                && failure.contains("between wall-north and wall-south"),
+                && failure.contains(
+                    "between wall-north and wall-south, 1.00 apart: too narrow for the two \
+                     side by side (1.22)"
+                ),
             "{failure}"
         );
     }

@@ -1,9 +1,10 @@
 //! What a solve gives back: the remedies applied, the rounds, the final schedule and its
 //! report ([`Solved`]); and the words for a collision or an uncertified schedule.
 
-use crate::cell::{Cell, InputError};
+use crate::cell::{Cell, CellObstacle, InputError, RobotKind};
 use crate::collision::{CheckReport, Verdict};
 use crate::geometry::Vec2;
+use crate::geometry::{closest_features, ConvexPolygon, Posed, WalkTolerances};
 use crate::motion::Pose;
 use crate::wcp::configurations::Assignment;
 use crate::wcp::legs::Legs;
@@ -269,8 +270,10 @@ pub fn uncertified(report: &CheckReport) -> String {
 
 /// Where a collision between two robots happens, for a reader who must change the cell:
 /// its point, and the fixtures that hem it in (those within [`HEMMED_IN`] times the two
-/// robots' radii of it, nearest first, at most two): `at (2.10, 3.00), between block-1 and
-/// block-2`. An obstacle collision is placed by its point only.
+/// robots' radii of it, nearest first, at most two), with the passage between two of them
+/// against two rigid robots side by side (their least widths and 2δ): `at (2.10, 3.00),
+/// between block-1 and block-2, 1.00 apart: too narrow for the two side by side (1.42)`.
+/// An obstacle collision is placed by its point only.
 ///
 /// ```
 /// use workcell::collision::{check, CheckOptions};
@@ -285,29 +288,56 @@ pub fn uncertified(report: &CheckReport) -> String {
 /// assert!(place.starts_with("at (") && place.ends_with("), beside fixture"), "{place}");
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
-pub fn place(cell: &Cell, c: &Collision) -> String {
+pub fn place<'a>(cell: &'a Cell, c: &Collision) -> String {
     let at = format!("at ({:.2}, {:.2})", c.point.x, c.point.y);
     let Some(b) = c.robots.1 else {
         return at;
     };
     let reach = HEMMED_IN * (cell.robots[c.robots.0].body_radius() + cell.robots[b].body_radius());
-    let mut near: Vec<(f64, &str)> = cell
+    let pieces = |o: &'a CellObstacle| -> &'a [ConvexPolygon] {
+        o.parts
+            .as_ref()
+            .map_or(std::slice::from_ref(&o.shape), |p| p.parts())
+    };
+    let mut near: Vec<(f64, &CellObstacle)> = cell
         .obstacles
         .iter()
         .map(|o| {
-            let parts = o.parts.as_ref().map(|p| p.parts());
-            let d = (parts.unwrap_or(std::slice::from_ref(&o.shape)).iter())
+            let d = (pieces(o).iter())
                 .map(|p| p.distance_to(&c.point))
                 .fold(f64::INFINITY, f64::min);
-            (d, o.name.as_str())
+            (d, o)
         })
         .filter(|(d, _)| *d <= reach)
         .collect();
-    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(b.1)));
-    match near.as_slice() {
-        [] => at,
-        [(_, one)] => format!("{at}, beside {one}"),
-        [(_, one), (_, two), ..] => format!("{at}, between {one} and {two}"),
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.name.cmp(&b.1.name)));
+    let (one, two) = match near.as_slice() {
+        [] => return at,
+        [(_, one)] => return format!("{at}, beside {}", one.name),
+        [(_, one), (_, two), ..] => (one, two),
+    };
+    // How wide the passage between them is, against the two robots side by side.
+    let tol = WalkTolerances::default();
+    let gap = (pieces(one).iter())
+        .flat_map(|p| pieces(two).iter().map(move |q| (p, q)))
+        .map(|(p, q)| {
+            let (p, q) = (Posed::new(p, 0.0, 0.0, 0.0), Posed::new(q, 0.0, 0.0, 0.0));
+            closest_features(&p, &q, None, &tol).distance
+        })
+        .fold(f64::INFINITY, f64::min);
+    let side_by_side = match (&cell.robots[c.robots.0].kind, &cell.robots[b].kind) {
+        (RobotKind::Rigid(p), RobotKind::Rigid(q)) => {
+            Some(p.shape.min_width() + q.shape.min_width() + 2.0 * cell.delta)
+        }
+        _ => None,
+    };
+    let between = format!(
+        "{at}, between {} and {}, {gap:.2} apart",
+        one.name, two.name
+    );
+    match side_by_side {
+        Some(w) if gap < w => format!("{between}: too narrow for the two side by side ({w:.2})"),
+        _ => between,
     }
 }
 
