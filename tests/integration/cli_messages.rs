@@ -43,7 +43,7 @@ fn one_iteration_is_singular() {
         let out = text(&o.stdout);
         assert!(
             out.contains("the limit of 1 round ran out;")
-                || out.contains("to the limit of 1 round;"),
+                || out.contains("the limit of 1 round cut 1 line of remedies short"),
             "{out}"
         );
     }

@@ -306,8 +306,11 @@ impl Search<'_> {
         let exhausted = match stop {
             Some(budget) => format!("{budget} ran out"),
             None if self.capped > 0 => format!(
-                "every line of remedies was followed to the limit of {max_iterations} round{}",
-                if max_iterations == 1 { "" } else { "s" }
+                "the limit of {max_iterations} round{} cut {} line{} of remedies short, and \
+                 every other remedy was tried",
+                if max_iterations == 1 { "" } else { "s" },
+                self.capped,
+                if self.capped == 1 { "" } else { "s" }
             ),
             None if deepest == 0 => "no remedy clears the first schedule's collision".to_owned(),
             None => format!(
