@@ -89,12 +89,17 @@ impl Frame {
     fn outline(&self, vertices: impl Iterator<Item = [f64; 2]>, placer: &mut Placer) -> Polygon {
         let points: Vec<(f64, f64)> = vertices.map(|v| self.xy(v[0], v[1])).collect();
         placer.take_outline(&points, true);
-        let text: Vec<String> = points
-            .iter()
-            .map(|(x, y)| format!("{x:.2},{y:.2}"))
-            .collect();
-        Polygon::new().set("points", text.join(" "))
+        Polygon::new().set("points", points_attr(&points))
     }
+}
+
+/// Picture points as an SVG `points` attribute.
+fn points_attr(points: &[(f64, f64)]) -> String {
+    let text: Vec<String> = points
+        .iter()
+        .map(|(x, y)| format!("{x:.2},{y:.2}"))
+        .collect();
+    text.join(" ")
 }
 
 /// The still picture as an SVG document.
@@ -369,7 +374,6 @@ fn numbered_rings(
     doc
 }
 
-/// The path with arrowheads along it, and (still) the shape at home and at each task.
 /// A robot's path with arrows, and in the still picture its body where it works; every line
 /// taken in `placer`.
 fn robot_layer(
@@ -383,10 +387,9 @@ fn robot_layer(
     let mut group = Group::new().set("stroke", colour);
     let path: Vec<(f64, f64)> = robot.samples.iter().map(|s| frame.xy(s[1], s[2])).collect();
     placer.take_outline(&path, false);
-    let points: Vec<String> = path.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
     group = group.add(
         Polyline::new()
-            .set("points", points.join(" "))
+            .set("points", points_attr(&path))
             .set("fill", "none")
             .set("stroke-width", 2),
     );
