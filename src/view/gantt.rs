@@ -4,7 +4,7 @@
 //! under the lanes (they are not in the schedule drawn).
 
 use super::labels::{text_width, Placer};
-use super::model::{kind_colour, Model, RobotView, KINDS};
+use super::model::{kind_colour, Mark, Model, RobotView, KINDS};
 use super::picture::{line, page, text, titled};
 use svg::node::element::{Group, Polygon, Rectangle, Title};
 use svg::Document;
@@ -90,7 +90,11 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
     };
     // One lane per robot (an arm's links share its first link's), and the rounds' strip.
     let lanes_end = HEADER + LANE * m.robots.iter().filter(|r| r.leads()).count() as f64;
-    let strip = if m.rounds.is_empty() { 0.0 } else { STRIP };
+    let strip = if rejected(m).next().is_none() {
+        0.0
+    } else {
+        STRIP
+    };
     let lanes_bottom = lanes_end + strip;
     let kinds: Vec<_> = KINDS
         .iter()
@@ -101,7 +105,7 @@ pub fn gantt_svg(m: &Model, width: f64, cursor: bool) -> (Document, TimeAxis) {
         })
         .collect();
     // The kinds five to a row, then a row for the collision marks.
-    let marked = m.contact.is_some() || !m.rounds.is_empty();
+    let marked = m.contact.is_some() || rejected(m).next().is_some();
     let legend_rows = kinds.len().div_ceil(KINDS_PER_ROW) + usize::from(marked);
     let height = lanes_bottom + AXIS + LEGEND_ROW * legend_rows as f64 + 8.0;
     let chart = Chart {
@@ -323,7 +327,7 @@ impl Chart<'_> {
     /// above its diamond or as near beside it as is free).
     fn rejected_rounds(&self, mut doc: Document, placer: &mut Placer) -> Document {
         let m = self.m;
-        if m.rounds.is_empty() {
+        if rejected(m).next().is_none() {
             return doc;
         }
         let (top, bottom) = (self.lanes_end, self.lanes_bottom);
@@ -354,7 +358,7 @@ impl Chart<'_> {
             .set("fill", "#d50000")
             .set("stroke", "white");
         let mut numbers = Vec::new();
-        for mark in &m.rounds {
+        for mark in rejected(m) {
             let x = self.axis.x(mark.time);
             let round = mark.round.map_or("?".to_owned(), |r| r.to_string());
             diamonds = diamonds.add(diamond(x, y).add(Title::new(format!(
@@ -414,7 +418,7 @@ impl Chart<'_> {
         let marks = [
             (m.contact.is_some(), "the collision"),
             (
-                !m.rounds.is_empty(),
+                rejected(m).next().is_some(),
                 "n: the collision that rejected round n's schedule",
             ),
         ];
@@ -426,6 +430,18 @@ impl Chart<'_> {
         }
         doc
     }
+}
+
+/// The rounds whose schedules were rejected: every round's collision but the one of the
+/// schedule drawn (the last round of a solve that found no free schedule), which is on the
+/// lanes.
+fn rejected(m: &Model) -> impl Iterator<Item = &Mark> {
+    let drawn = |mark: &Mark| {
+        m.contact
+            .as_ref()
+            .is_some_and(|c| c.time == mark.time && c.bodies == mark.bodies)
+    };
+    m.rounds.iter().filter(move |mark| !drawn(mark))
 }
 
 /// A collision's mark: a diamond 10 pixels wide and 14 high centred on `(x, y)`.

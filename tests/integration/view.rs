@@ -326,3 +326,32 @@ fn obstacles_are_named_a_scale_is_drawn_and_a_scene_has_a_horizon() {
         "{contents:?}"
     );
 }
+
+/// A solve that ends without a free schedule draws its last schedule: that schedule's
+/// collision sits on its robots' lanes, and only the rounds before it, whose schedules were
+/// rejected, go in the strip.
+#[test]
+fn a_failed_solve_draws_its_collision_on_the_lanes_and_earlier_rounds_in_the_strip() {
+    let gantt = temp_dir_made("view", "failed").join("failed-gantt.svg");
+    let result = workcell(&[
+        "solve",
+        &shipped("feedback-cell.json"),
+        "--feedback",
+        "greedy",
+        "--max-iterations",
+        "2",
+        "--json",
+        "--gantt",
+        gantt.to_str().unwrap(),
+    ]);
+    assert_eq!(result["collision_free"], false);
+    let svg = std::fs::read_to_string(&gantt).unwrap();
+    let group = |id: &str| {
+        let g = svg.split(&format!("id=\"{id}\"")).nth(1).expect(id);
+        g[..g.find("</g>").unwrap()].to_owned()
+    };
+    assert_eq!(group("contact-marks").matches("<polygon").count(), 2);
+    let strip = group("round-marks");
+    assert_eq!(strip.matches("<polygon").count(), 1, "{strip}");
+    assert!(strip.contains("round 1:"), "{strip}");
+}
