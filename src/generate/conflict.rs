@@ -13,6 +13,7 @@
 //! cell in the contract's format (section 3), deterministic in (family, seed, index).
 
 use super::mix;
+use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde_json::{json, Value};
@@ -469,12 +470,8 @@ fn aisles(cell: &mut CellDoc, rng: &mut ChaCha8Rng, robots: usize) {
         mouths.push(((lane, -out), (0.0, 1.0)));
         mouths.push(((lane, out), (0.0, -1.0)));
     }
-    let mut order: Vec<usize> = (0..mouths.len()).collect();
-    for k in (1..order.len()).rev() {
-        order.swap(k, rng.random_range(0..=k));
-    }
-    for &m in order.iter().take(robots) {
-        let ((x, y), (ux, uy)) = mouths[m];
+    mouths.shuffle(rng);
+    for &((x, y), (ux, uy)) in mouths.iter().take(robots) {
         let owner = cell.robot(x, y);
         // Past the far mouth, beside where a robot may wait there.
         let (fx, fy) = (x + ux * (2.0 * out + 1.2), y + uy * (2.0 * out + 1.2));
@@ -494,6 +491,7 @@ fn aisles(cell: &mut CellDoc, rng: &mut ChaCha8Rng, robots: usize) {
         } else {
             (shift, side)
         };
+        let d = duration(rng);
         cell.task(format!("{owner}-weld-2"), tx, ty, d, &[&owner]);
     }
 }
