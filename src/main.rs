@@ -92,10 +92,23 @@ enum Command {
         /// lower bound.
         #[arg(long)]
         export_graph: Option<PathBuf>,
-        /// Stop searching after this many seconds (whole solve) and keep the best certified
-        /// schedule found so far. Without it the result depends only on the cell and the seed.
+        /// Spend this many seconds (whole solve) improving the schedule, and answer with the
+        /// best certified one: the sequencer searches on until half the time left, then the
+        /// search over remedies (or, on a collision-free plan, the sequencer again) takes the
+        /// rest. Without it the result depends only on the cell, the seed and the effort.
         #[arg(long, value_parser = cli::positive, allow_negative_numbers = true)]
         time_limit: Option<f64>,
+        /// Work of the sequencer's search, deterministic: epochs of its iterated local search
+        /// (each kicks every chain and searches again); the same cell, seed and effort give
+        /// the same schedule on any machine and number of threads [default: 1; with
+        /// --time-limit, until the time is spent].
+        #[arg(long, value_parser = cli::at_least_one, allow_negative_numbers = true)]
+        effort: Option<u64>,
+        /// Write the anytime curve as CSV: one line per better schedule found (seconds since
+        /// the start, stage, makespan, whether it is certified, a lower bound of the
+        /// collision-blind makespan).
+        #[arg(long)]
+        trace: Option<PathBuf>,
         /// Print a plain progress line on stderr every second (stage, best makespan, elapsed
         /// time) instead of the progress bar.
         #[arg(long)]
@@ -289,6 +302,8 @@ fn main() -> ExitCode {
             feedback,
             export_graph,
             time_limit,
+            effort,
+            trace,
             progress,
             planning,
         } => cli::solve::run_solve(
@@ -301,6 +316,8 @@ fn main() -> ExitCode {
                 export_graph: export_graph.as_deref(),
                 // Beyond what a Duration holds, no limit at all.
                 time_limit: time_limit.and_then(|t| std::time::Duration::try_from_secs_f64(t).ok()),
+                effort: effort.map(|e| e as usize),
+                trace: trace.as_deref(),
                 progress,
                 planning: planning_of(&planning),
             },

@@ -5,6 +5,7 @@ pub mod compare;
 pub mod generate;
 pub mod output;
 pub mod solve;
+pub mod trace;
 
 /// `n` and the noun, in the plural unless `n` is 1: "1 pair", "9 pairs".
 pub fn counted(n: u64, noun: &str) -> String {

@@ -1,5 +1,6 @@
 //! `workcell solve` and `workcell evaluate`: schedules, their checks and their exports.
 
+use super::trace::Trace;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -17,7 +18,8 @@ use workcell::wcp::report::{
     waits_json, ResultJson, StagesJson,
 };
 use workcell::wcp::{
-    self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SolveOptions, WcpGraph,
+    self, Collision, Feedback, Iteration, Progress, Remedies, Schedule, SearchOptions,
+    SolveOptions, WcpGraph,
 };
 
 /// Output options shared by `solve` and `evaluate`.
@@ -47,13 +49,14 @@ pub struct FeedbackArgs {
     /// re-sequencing and one wait at a node, never revisited (to compare against).
     #[arg(long, default_value = "search", value_parser = ["search", "greedy"])]
     feedback: String,
-    /// The search's budget: most schedules checked.
-    #[arg(long, default_value_t = 5000, value_parser = super::at_least_one, allow_negative_numbers = true)]
-    search_nodes: u64,
-    /// The search's time limit, in seconds (a safety stop; the result is deterministic
-    /// when it is not reached).
-    #[arg(long, default_value_t = 60.0, value_parser = positive_seconds, allow_negative_numbers = true)]
-    search_time: f64,
+    /// The search's budget: most schedules checked [default: 5000; with --time-limit, no
+    /// budget but the time].
+    #[arg(long, value_parser = super::at_least_one, allow_negative_numbers = true)]
+    search_nodes: Option<u64>,
+    /// The search's time limit, in seconds, a safety stop (the result is deterministic when
+    /// it is not reached) [default: 60; with --time-limit, that limit's].
+    #[arg(long, value_parser = positive_seconds, allow_negative_numbers = true)]
+    search_time: Option<f64>,
     /// Stop when the search stops paying: once it has checked this many schedules, and at
     /// least as many as it took to find it, since its best certified schedule (0, the
     /// default: search until a budget is spent).
@@ -74,15 +77,25 @@ fn positive_seconds(s: &str) -> Result<f64, String> {
 }
 
 impl FeedbackArgs {
+    /// Sets the feedback's options; under a time limit (`opts.time_limit`) the search's own
+    /// budgets default to none: the solve's limit is the one the user gave.
     fn apply(&self, opts: &mut SolveOptions) {
         opts.feedback = match self.feedback.as_str() {
             "greedy" => Feedback::Greedy,
             _ => Feedback::Search,
         };
-        opts.search.max_nodes = self.search_nodes as usize;
+        let limited = opts.time_limit.is_some();
+        opts.search.max_nodes = match (self.search_nodes, limited) {
+            (Some(n), _) => n as usize,
+            (None, true) => usize::MAX,
+            (None, false) => SearchOptions::default().max_nodes,
+        };
         opts.search.patience = (self.search_patience > 0).then_some(self.search_patience as usize);
-        opts.search.time_limit = std::time::Duration::try_from_secs_f64(self.search_time)
-            .unwrap_or(std::time::Duration::MAX);
+        opts.search.time_limit = match (self.search_time, limited) {
+            (Some(s), _) => Duration::try_from_secs_f64(s).unwrap_or(Duration::MAX),
+            (None, true) => Duration::MAX,
+            (None, false) => SearchOptions::default().time_limit,
+        };
         if let Some(names) = &self.remedies {
             opts.search.remedies = Remedies::of_names(names.iter().map(String::as_str))
                 .expect("clap accepts only the remedies' names");
@@ -98,6 +111,8 @@ const PROGRESS_PERIOD: Duration = Duration::from_secs(1);
 struct Bar {
     bar: ProgressBar,
     lines: Option<Arc<Lines>>,
+    /// `--trace`.
+    trace: Option<Trace>,
     printer: Option<std::thread::JoinHandle<()>>,
 }
 
@@ -146,7 +161,7 @@ impl Lines {
 }
 
 impl Bar {
-    fn new(json: bool, lines: bool) -> Bar {
+    fn new(json: bool, lines: bool, trace: bool) -> Bar {
         let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
         if json || lines || !std::io::stderr().is_terminal() {
             bar.set_draw_target(ProgressDrawTarget::hidden());
@@ -177,6 +192,7 @@ impl Bar {
         });
         Bar {
             bar,
+            trace: trace.then(|| Trace::new(Instant::now())),
             lines,
             printer,
         }
@@ -233,6 +249,20 @@ impl Progress for Bar {
             // Smallest wins; f64 bits of positive numbers order as the numbers.
             lines.best.fetch_min(makespan.to_bits(), Ordering::Relaxed);
         }
+        if let Some(trace) = &self.trace {
+            trace.found(makespan, false);
+        }
+    }
+
+    fn certified(&self, makespan: f64) {
+        if let Some(lines) = &self.lines {
+            lines
+                .certified
+                .fetch_min(makespan.to_bits(), Ordering::Relaxed);
+        }
+        if let Some(trace) = &self.trace {
+            trace.found(makespan, true);
+        }
     }
 
     fn iteration(&self, k: usize, makespan: f64, collision: Option<&Collision>) {
@@ -245,11 +275,6 @@ impl Progress for Bar {
         } else {
             "collision-free"
         };
-        if let (Some(lines), None) = (&self.lines, collision) {
-            lines
-                .certified
-                .fetch_min(makespan.to_bits(), Ordering::Relaxed);
-        }
         self.bar
             .set_message(format!("{k}: makespan {makespan:.3}, {verdict}"));
         self.bar.tick();
@@ -271,6 +296,10 @@ pub struct SolveArgs<'a> {
     pub export_graph: Option<&'a Path>,
     /// `--time-limit`.
     pub time_limit: Option<Duration>,
+    /// `--effort`.
+    pub effort: Option<usize>,
+    /// `--trace`.
+    pub trace: Option<&'a Path>,
     /// `--progress`.
     pub progress: bool,
     /// `--planning`.
@@ -279,8 +308,12 @@ pub struct SolveArgs<'a> {
 
 /// Solves the cell; exit status 0 collision-free, 1 none found.
 pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCode, InputError> {
-    check_paths(&[path], out, args.export_graph)?;
-    let mut bar = Bar::new(out.json, args.progress);
+    let extra = [
+        ("--export-graph", args.export_graph),
+        ("--trace", args.trace),
+    ];
+    check_paths(&[path], out, &extra)?;
+    let mut bar = Bar::new(out.json, args.progress, args.trace.is_some());
     let cell = load(path).inspect_err(|_| bar.finish())?;
     let mut opts = SolveOptions {
         max_iterations: args.max_iterations,
@@ -290,15 +323,27 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
     };
     args.feedback.apply(&mut opts);
     opts.sequencer.seed = args.seed;
+    // A time limit is a budget to use: epochs until it is spent, unless an effort is given.
+    opts.sequencer.effort = match (args.effort, args.time_limit) {
+        (Some(effort), _) => effort,
+        (None, Some(_)) => usize::MAX,
+        (None, None) => 1,
+    };
     // An error leaves no half-drawn bar above its message.
     let prepared = wcp::prepare(&cell, &opts, &bar).inspect_err(|_| bar.finish())?;
     if let Some(unfinished) = prepared.unfinished {
         bar.finish();
         return Ok(out_of_time(path, out.json, &unfinished, &prepared));
     }
+    if let Some(trace) = &bar.trace {
+        trace.lower_bound(prepared.makespan_lower_bound(&cell));
+    }
     let solved = wcp::solve(&cell, &prepared, &opts, &bar).inspect_err(|_| bar.finish())?;
     bar.finish();
     let mut written = Ok(());
+    if let (Some(file), Some(trace)) = (args.trace, &bar.trace) {
+        written = written.and(write(file, &trace.csv()));
+    }
     if let Some(file) = args.export_graph {
         // After the solve: every move it planned is exact there.
         // The configurations the solve chose.
@@ -399,7 +444,7 @@ pub fn run_evaluate(
     blind: bool,
     out: &Outputs,
 ) -> Result<ExitCode, InputError> {
-    check_paths(&[path, sequences], out, None)?;
+    check_paths(&[path, sequences], out, &[])?;
     let cell = load(path)?;
     let given = if blind {
         load_blind_sequences(sequences, &cell)?
@@ -512,16 +557,16 @@ fn write(file: &Path, text: &str) -> Result<(), InputError> {
 fn check_paths(
     inputs: &[&Path],
     out: &Outputs,
-    export_graph: Option<&Path>,
+    extra: &[(&str, Option<&Path>)],
 ) -> Result<(), InputError> {
     let outputs: Vec<(&str, &Path)> = [
         ("--export-scene", out.export_scene.as_deref()),
         ("--svg", out.svg.as_deref()),
         ("--gantt", out.gantt.as_deref()),
         ("--html", out.html.as_deref()),
-        ("--export-graph", export_graph),
     ]
     .into_iter()
+    .chain(extra.iter().copied())
     .filter_map(|(option, path)| Some((option, path?)))
     .collect();
     super::output::check_outputs(inputs, &outputs)

@@ -17,7 +17,7 @@
 
 use super::configurations::Assignment;
 use super::prepare::{Prepared, Progress};
-use super::sequence::sequence_with;
+use super::sequence::{repairing, sequence_with};
 use super::sequencer::task_node;
 use super::{ConfigurationChoice, SolveOptions};
 use crate::cell::{Cell, InputError};
@@ -83,6 +83,8 @@ fn alternate(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<(Option<Prepared>, f64), InputError> {
+    // Choosing is a repair loop: the blind plan's full effort comes after it.
+    let opts = &repairing(opts);
     let mut sol = sequence_with(cell, prepared, &[], opts, None, progress)?;
     let mut current: Option<Prepared> = None;
     for _ in 0..MAX_ROUNDS {

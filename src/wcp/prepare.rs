@@ -47,6 +47,9 @@ pub trait Progress: Sync {
     /// The sequencer found a plan of this makespan (on the travel times it knows; from any
     /// thread).
     fn best(&self, _makespan: f64) {}
+    /// A schedule of this makespan was certified collision-free (after its
+    /// [`iteration`](Progress::iteration)).
+    fn certified(&self, _makespan: f64) {}
 }
 
 impl Progress for () {}
@@ -249,6 +252,37 @@ fn plan_until(
 }
 
 impl Prepared {
+    /// A lower bound of the collision-blind makespan (and so of any schedule's): the longest
+    /// of the tasks' shortest round trips, each from the home of the robot that does it
+    /// soonest, on the moves' lower bounds or their planned times where known.
+    ///
+    /// ```
+    /// use workcell::wcp::{prepare, sequence, SolveOptions};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let opts = SolveOptions::default();
+    /// let prepared = prepare(&cell, &opts, &())?;
+    /// let bound = prepared.makespan_lower_bound(&cell);
+    /// assert!(bound > 0.0 && bound <= sequence(&cell, &prepared, &[], &opts)?.makespan);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn makespan_lower_bound(&self, cell: &Cell) -> f64 {
+        let leg = |r: usize, a: usize, b: usize| {
+            let known = self.known.get(r).and_then(|k| k.get(&(a, b)).copied());
+            known.unwrap_or_else(|| self.bounds.bound(r, a, b))
+        };
+        let trip = |t: usize| {
+            let node = crate::wcp::sequencer::task_node(t);
+            (cell.tasks[t].robots.iter())
+                .map(|&r| leg(r, 0, node) + cell.tasks[t].duration + leg(r, node, 0))
+                .filter(|trip| trip.is_finite())
+                .fold(f64::INFINITY, f64::min)
+        };
+        (0..cell.tasks.len())
+            .map(trip)
+            .filter(|trip| trip.is_finite())
+            .fold(0.0, f64::max)
+    }
+
     /// The same preparation with the arms in the configurations of `assignment`: the store
     /// shares every move planned so far, the bounds and the known moves are those of the
     /// new configurations.

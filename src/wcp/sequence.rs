@@ -91,9 +91,14 @@ pub fn sequence_with(
     // The search stops early enough to plan its plan's moves within the limit; the first
     // plan is built in full until the limit itself.
     seq_opts.construction_deadline = prepared.deadline;
-    seq_opts.deadline = prepared
+    let limit = prepared
         .deadline
         .map(|d| d.checked_sub(prepared.reserve).unwrap_or_else(Instant::now));
+    // A caller's own deadline (a share of the time) may come first.
+    seq_opts.deadline = match (opts.sequencer.deadline, limit) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    };
     let mut known: Arc<ExactArcs> = prepared.known.clone();
     let mut start: Option<Vec<Vec<usize>>> = start.map(<[_]>::to_vec);
     let mut best: Option<Solution> = None;
@@ -125,6 +130,7 @@ pub fn sequence_with(
         let settled = certified.violations == sol.violations
             && certified.makespan <= sol.makespan * (1.0 + SETTLED_TOL);
         certified.optimal = sol.optimal && (exact || settled);
+        progress.best(certified.makespan);
         stalled += 1;
         if certified.makespan.is_finite() {
             if best.as_ref().is_none_or(|b| better(&certified, b)) {
@@ -147,9 +153,35 @@ pub fn sequence_with(
         // Later rounds start from the last plan, on mostly the same times: a shorter search
         // repairs what the new times changed.
         seq_opts.iterations = (opts.sequencer.iterations / WARM_ROUND_SHARE).max(1);
+        seq_opts.effort = 1;
     }
     best.ok_or_else(|| sequencer_error(cell, sequencer::SequencerError::Infeasible))
 }
+
+/// The settings of a sequencing that repairs a plan (a re-sequencing, a choice of
+/// configurations): one epoch of the local search, whatever effort the blind plan gets.
+pub(crate) fn repairing(opts: &SolveOptions) -> SolveOptions {
+    let mut opts = opts.clone();
+    opts.sequencer.effort = 1;
+    opts
+}
+
+/// The settings of the collision-blind sequencing: with a time limit and an effort beyond
+/// one epoch, the sequencer may take [`BLIND_SHARE`] of the time left, so that the search
+/// over remedies gets the rest when the plan collides (and the plan is refined with it when
+/// it does not).
+pub(crate) fn blind_options(opts: &SolveOptions, prepared: &Prepared) -> SolveOptions {
+    let mut opts = opts.clone();
+    if let (Some(deadline), true) = (prepared.deadline, opts.sequencer.effort > 1) {
+        let now = Instant::now();
+        let share = deadline.saturating_duration_since(now).mul_f64(BLIND_SHARE);
+        opts.sequencer.deadline = Some(now + share);
+    }
+    opts
+}
+
+/// The share of the time left that the collision-blind sequencing may take (see [`blind_options`]).
+pub(crate) const BLIND_SHARE: f64 = 0.5;
 
 /// Plans the moves of `sol` that `inst` only bounds and adds their times to `known` (both
 /// ways); whether the plan's costs were exact already (no move missing, or each bound met).

@@ -8,6 +8,7 @@
 //! The modules that run the binary or draw pictures need the `cli` feature (on by default);
 //! `cargo test --no-default-features` runs the others on the bare library.
 
+mod anytime;
 mod arm_cells;
 mod arm_files;
 mod arm_solve;

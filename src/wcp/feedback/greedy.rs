@@ -12,7 +12,7 @@ use crate::wcp::moves::MoveStore;
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Activity, Collision, Delay, Schedule, Segment};
-use crate::wcp::sequence::sequence_with;
+use crate::wcp::sequence::{blind_options, repairing, sequence_with};
 use crate::wcp::sequencer::{Conflict, Solution};
 use std::time::Instant;
 
@@ -25,7 +25,14 @@ pub fn solve(
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
     let clock = Instant::now();
-    let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
+    let blind = sequence_with(
+        cell,
+        prepared,
+        &[],
+        &blind_options(opts, prepared),
+        None,
+        progress,
+    )?;
     let mut times = prepared.times;
     times.sequencing += clock.elapsed();
     let mut greedy = Greedy {
@@ -115,6 +122,9 @@ impl Greedy<'_> {
             schedule.makespan,
             collision.as_ref(),
         );
+        if collision.is_none() && report.verdict().is_certified_free() {
+            self.progress.certified(schedule.makespan);
+        }
         Ok(Round {
             schedule,
             report,
@@ -146,7 +156,7 @@ impl Greedy<'_> {
             cell,
             self.prepared,
             &self.conflicts,
-            self.opts,
+            &repairing(self.opts),
             None,
             self.progress,
         )?;

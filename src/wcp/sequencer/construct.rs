@@ -137,15 +137,43 @@ pub(super) fn ruin_recreate(
     rng: &mut ChaCha8Rng,
     scratch: &mut Scratch,
 ) -> Vec<usize> {
+    // At least 20 (or all): smaller ruins keep falling back into the same
+    // local optimum on small instances.
+    let most = (model.tasks / 6).clamp(20, 30);
+    ruin_recreate_between(model, plan, rng, scratch, 1, most)
+}
+
+/// A kick between two chains of an anytime search ([`ruin_recreate`], with `KICK_SHARE` to
+/// twice that of the tasks ruined): far enough to leave the basin the chain settled in.
+pub(super) fn kick(
+    model: &Model,
+    plan: &mut Plan,
+    rng: &mut ChaCha8Rng,
+    scratch: &mut Scratch,
+) -> Vec<usize> {
+    let least = (model.tasks as f64 * KICK_SHARE).ceil() as usize;
+    ruin_recreate_between(model, plan, rng, scratch, least.max(1), 2 * least.max(1))
+}
+
+/// The least share of the tasks a [`kick`] ruins.
+const KICK_SHARE: f64 = 0.15;
+
+/// [`ruin_recreate`] of `least..=most` tasks (at most all).
+fn ruin_recreate_between(
+    model: &Model,
+    plan: &mut Plan,
+    rng: &mut ChaCha8Rng,
+    scratch: &mut Scratch,
+    least: usize,
+    most: usize,
+) -> Vec<usize> {
     let n = model.tasks;
     let mut touched = Vec::new();
     if n == 0 {
         return touched;
     }
-    // At least 20 (or all): smaller ruins keep falling back into the same
-    // local optimum on small instances.
-    let most = (n / 6).clamp(20, 30).min(n);
-    let q = rng.random_range(1..=most);
+    let most = most.min(n);
+    let q = rng.random_range(least.min(most)..=most);
     let mut picked: Vec<usize> = match rng.random_range(0..3) {
         0 => {
             let mut all: Vec<usize> = (0..n).collect();

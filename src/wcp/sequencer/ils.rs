@@ -7,7 +7,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::construct::{initial_order, insert_all_until, ruin_recreate};
+use super::construct::{initial_order, insert_all_until, kick, ruin_recreate};
 use super::granular::{self, Active};
 use super::local_search::local_search;
 use super::model::Model;
@@ -26,8 +26,8 @@ pub(super) enum Start {
 /// what the perturbation touched, not the whole plan.
 const GRANULAR_ROUNDS: usize = 10;
 
-/// The best plan over `opts.restarts` restarts. Ties go to the lowest restart index, so the
-/// result does not depend on how the threads ran. `on_best` hears every makespan that
+/// The best plan over `opts.restarts` restarts, each searched for `opts.effort` epochs.
+/// Ties go to the lowest restart index, so the result does not depend on how the threads ran. `on_best` hears every makespan that
 /// improves a restart's best, from any thread.
 pub(super) fn search(
     model: &Model,
@@ -51,7 +51,8 @@ pub(super) fn search(
         }
         Start::Fresh(_) => None,
     };
-    let plans: Vec<Plan> = (0..opts.restarts.max(1))
+    let restarts = opts.restarts.max(1);
+    let mut chains: Vec<Plan> = (0..restarts)
         .into_par_iter()
         .map(|k| {
             let first = match (&start, &shared) {
@@ -59,20 +60,78 @@ pub(super) fn search(
                 (Start::Fresh(Some(plan)), None) if k == 0 => Begin::From(plan.clone()),
                 _ => Begin::Built,
             };
-            restart(model, opts, k, first, on_best)
+            restart(model, opts, &mut stream(opts.seed, k), first, k, on_best)
         })
         .collect();
-    let mut best: Option<Plan> = None;
-    for plan in plans {
-        let wins = match &best {
-            None => true,
-            Some(b) => plan.obj().better(&b.obj()),
-        };
-        if wins {
-            best = Some(plan);
+    // Iterated local search over epochs. Chain 0 is kicked (a large ruin and recreate) from
+    // the best plan of all and searched again: it intensifies. Every other chain is kicked
+    // from its own best while that keeps improving, and starts afresh from a new
+    // construction once it stalls: it diversifies. The epochs' streams follow the first
+    // epoch's, so that effort `n + 1` repeats effort `n` and goes on.
+    let mut leader = chains[best_index(&chains)].clone();
+    let mut improving = vec![true; restarts];
+    for epoch in 1..opts.effort.max(1) {
+        if opts.deadline.is_some_and(|d| Instant::now() >= d) {
+            break;
+        }
+        let next: Vec<(Plan, bool)> = chains
+            .into_par_iter()
+            .enumerate()
+            .map(|(k, own)| {
+                let mut rng = stream(opts.seed, epoch * restarts + k);
+                let mut scratch = Scratch::default();
+                let from = match k == 0 {
+                    true => &leader,
+                    false => &own,
+                };
+                if k > 0 && !improving[k] {
+                    return (
+                        restart(model, opts, &mut rng, Begin::Built, k, on_best),
+                        true,
+                    );
+                }
+                let mut plan = from.clone();
+                let touched = kick(model, &mut plan, &mut rng, &mut scratch);
+                descend(
+                    model,
+                    &mut plan,
+                    &mut scratch,
+                    Some(&touched),
+                    opts.deadline,
+                );
+                let found = chain(model, opts, &mut rng, &mut scratch, plan, on_best);
+                match found.obj().better(&own.obj()) {
+                    true => (found, true),
+                    false => (own, false),
+                }
+            })
+            .collect();
+        (chains, improving) = next.into_iter().unzip();
+        let best = &chains[best_index(&chains)];
+        if best.obj().better(&leader.obj()) {
+            leader = best.clone();
         }
     }
-    best.expect("at least one restart")
+    leader
+}
+
+/// The index of the best plan, the lowest on ties (so that the result does not depend on
+/// how the threads ran).
+fn best_index(plans: &[Plan]) -> usize {
+    let mut best = 0;
+    for (k, plan) in plans.iter().enumerate().skip(1) {
+        if plan.obj().better(&plans[best].obj()) {
+            best = k;
+        }
+    }
+    best
+}
+
+/// The random stream `k` of the seed: restarts and epochs are independent of each other.
+fn stream(seed: u64, k: usize) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(k as u64);
+    rng
 }
 
 /// Where one restart begins.
@@ -117,23 +176,23 @@ fn descend(
     granular::local_search(model, plan, scratch, &mut active, deadline);
 }
 
+/// One chain from `start`; a construction takes the first order of restart `k` (see
+/// [`initial_order`]).
 fn restart(
     model: &Model,
     opts: &SequencerOptions,
-    k: usize,
+    rng: &mut ChaCha8Rng,
     start: Begin,
+    k: usize,
     on_best: &(dyn Fn(f64) + Sync),
 ) -> Plan {
-    // One stream of the seed per restart: restarts are independent of each other.
-    let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
-    rng.set_stream(k as u64);
     let mut scratch = Scratch::default();
     let (mut current, descended) = match start {
         Begin::Descended(plan) => (plan, true),
         Begin::From(plan) => (plan, false),
         Begin::Built => {
             let mut plan = Plan::empty(model);
-            let order = initial_order(model, k, &mut rng);
+            let order = initial_order(model, k, rng);
             let hurry = opts.construction_deadline.or(opts.deadline);
             insert_all_until(model, &mut plan, &order, &mut scratch, hurry);
             (plan, false)
@@ -142,6 +201,19 @@ fn restart(
     if !descended {
         descend(model, &mut current, &mut scratch, None, opts.deadline);
     }
+    chain(model, opts, rng, &mut scratch, current, on_best)
+}
+
+/// A chain of ruin-and-recreate perturbations, each followed by a descent, from `current`
+/// (a local optimum); the best plan it met.
+fn chain(
+    model: &Model,
+    opts: &SequencerOptions,
+    rng: &mut ChaCha8Rng,
+    scratch: &mut Scratch,
+    mut current: Plan,
+    on_best: &(dyn Fn(f64) + Sync),
+) -> Plan {
     let mut best = current.clone();
     on_best(best.obj().makespan);
     let (rounds, slack) = if model.neighbours.is_some() {
@@ -159,11 +231,11 @@ fn restart(
         }
         since += 1;
         let mut candidate = current.clone();
-        let touched = ruin_recreate(model, &mut candidate, &mut rng, &mut scratch);
+        let touched = ruin_recreate(model, &mut candidate, rng, scratch);
         descend(
             model,
             &mut candidate,
-            &mut scratch,
+            scratch,
             Some(&touched),
             opts.deadline,
         );

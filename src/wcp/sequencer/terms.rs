@@ -67,6 +67,11 @@ pub struct SequencerOptions {
     /// restart; a restart stops earlier after `iterations / 4` rounds in a
     /// row that do not improve its best plan.
     pub iterations: usize,
+    /// Epochs of the local search: after the first, every restart's chain is kicked (a large
+    /// ruin and recreate) and searched again, `effort - 1` times (1: one chain per restart).
+    /// The work grows linearly with it and the result depends on it only, not on the
+    /// machine; `usize::MAX` with a `deadline`: until the deadline.
+    pub effort: usize,
     /// Largest estimated work (elementary DP updates) for the exact search; 0 disables it.
     pub exact_limit: u64,
     /// When given, the local search stops at this instant and returns the best plan found so
@@ -87,6 +92,7 @@ impl Default for SequencerOptions {
             seed: 0,
             restarts: 4,
             iterations: 400,
+            effort: 1,
             exact_limit: 10_000_000,
             deadline: None,
             construction_deadline: None,

@@ -31,6 +31,7 @@
 
 mod order;
 mod pending;
+mod refine;
 
 use super::fingerprint::fingerprint;
 use super::outcome::{build, Iteration, Remedy, Solved};
@@ -42,7 +43,7 @@ use crate::wcp::legs::{default_legs, Legs};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
-use crate::wcp::sequence::sequence_with;
+use crate::wcp::sequence::{blind_options, sequence_with};
 use crate::wcp::sequencer::{self, Conflict};
 use order::{Key, Ordered, Rank};
 use rayon::prelude::*;
@@ -172,7 +173,14 @@ pub(super) fn solve(
     let moves = &prepared.moves;
     let mut times = prepared.times;
     let clock = Instant::now();
-    let blind = sequence_with(cell, prepared, &[], opts, None, progress)?;
+    let mut blind = sequence_with(
+        cell,
+        prepared,
+        &[],
+        &blind_options(opts, prepared),
+        None,
+        progress,
+    )?;
     times.sequencing += clock.elapsed();
     let mut search = Search {
         cell,
@@ -216,38 +224,51 @@ pub(super) fn solve(
         search.enqueue(root);
     }
     let started = Instant::now();
-    let mut stop = None;
-    while let Some(Reverse((.., id))) = search.queue.pop() {
-        stop = search.budget_spent(started);
-        if stop.is_some() || search.stalled() {
-            break;
-        }
-        if !search.worth(id) {
-            continue;
-        }
-        match search.nodes[id].pending.take() {
-            // Costed and checked now; queued again to be expanded if it collides.
-            Some(Pending::Resequence(conflict)) => {
-                search.cost_resequencing(id, conflict, progress)?;
-                continue;
-            }
-            Some(Pending::Reconfigure(r)) => {
-                search.cost_reconfiguration(id, r, progress);
-                continue;
-            }
-            None => {}
-        }
-        if search.nodes[id].depth + 1 < opts.max_iterations {
-            search.expand(id, progress);
-        } else {
-            search.capped += 1;
-        }
+    let mut stop = search.run(started, progress)?;
+    // With time left under a time limit: a refined plan, searched in turn.
+    while stop.is_none() && search.refine(&mut blind, progress)? {
+        stop = search.run(started, progress)?;
     }
     let (id, failure) = search.outcome(stop);
     Ok(search.finish(id, failure, &blind))
 }
 
 impl Search<'_> {
+    /// Takes nodes from the queue until it is empty or a budget is spent (which one, then).
+    fn run(
+        &mut self,
+        started: Instant,
+        progress: &dyn Progress,
+    ) -> Result<Option<String>, InputError> {
+        while let Some(Reverse((.., id))) = self.queue.pop() {
+            let stop = self.budget_spent(started);
+            if stop.is_some() || self.stalled() {
+                return Ok(stop);
+            }
+            if !self.worth(id) {
+                continue;
+            }
+            match self.nodes[id].pending.take() {
+                // Costed and checked now; queued again to be expanded if it collides.
+                Some(Pending::Resequence(conflict)) => {
+                    self.cost_resequencing(id, conflict, progress)?;
+                    continue;
+                }
+                Some(Pending::Reconfigure(r)) => {
+                    self.cost_reconfiguration(id, r, progress);
+                    continue;
+                }
+                None => {}
+            }
+            if self.nodes[id].depth + 1 < self.opts.max_iterations {
+                self.expand(id, progress);
+            } else {
+                self.capped += 1;
+            }
+        }
+        Ok(None)
+    }
+
     /// The budget that has run out, if one has: schedules checked, the solve's time limit
     /// or the search's own (counted from `started`).
     fn budget_spent(&self, started: Instant) -> Option<String> {
@@ -388,6 +409,9 @@ impl Search<'_> {
                 outcome.collision.as_ref(),
             );
             let status = outcome.status();
+            if status == Status::Free {
+                progress.certified(self.nodes[id].makespan);
+            }
             self.nodes[id].outcome = Some(outcome);
             match status {
                 Status::Free if self.worth(id) => {

@@ -38,7 +38,7 @@ impl Search<'_> {
     /// two robots (see [`LOCAL_RESEQUENCE_FROM_TASKS`]): rounds, not time, so the result
     /// stays deterministic.
     fn resequencer(&self, conflict: &Conflict, routes: &[Vec<usize>]) -> SolveOptions {
-        let mut opts = self.opts.clone();
+        let mut opts = crate::wcp::sequence::repairing(self.opts);
         let share = (opts.sequencer.iterations / RESEQUENCE_SHARE).max(1);
         let tasks = self.cell.tasks.len();
         let local = (LOCAL_RESEQUENCE_FROM_TASKS..sequencer::GRANULAR_FROM_TASKS).contains(&tasks);
