@@ -127,6 +127,8 @@ struct Lines {
     /// Best makespan of a schedule checked collision-free, as f64 bits (infinity: none
     /// yet).
     certified: AtomicU64,
+    /// A lower bound of the makespan, as f64 bits (infinity: not known yet).
+    lower_bound: AtomicU64,
     done: AtomicBool,
 }
 
@@ -153,8 +155,13 @@ impl Lines {
         } else {
             "best makespan -".to_owned()
         };
+        let bound = f64::from_bits(self.lower_bound.load(Ordering::Relaxed));
+        let bound = match bound.is_finite() {
+            true => format!(", lower bound {bound:.3}"),
+            false => String::new(),
+        };
         format!(
-            "progress: {:.1} s, {stage}, {best}",
+            "progress: {:.1} s, {stage}, {best}{bound}",
             self.start.elapsed().as_secs_f64()
         )
     }
@@ -174,6 +181,7 @@ impl Bar {
                 to_plan: AtomicUsize::new(0),
                 best: AtomicU64::new(f64::INFINITY.to_bits()),
                 certified: AtomicU64::new(f64::INFINITY.to_bits()),
+                lower_bound: AtomicU64::new(f64::INFINITY.to_bits()),
                 done: AtomicBool::new(false),
             })
         });
@@ -335,8 +343,12 @@ pub fn run_solve(path: &Path, out: &Outputs, args: &SolveArgs) -> Result<ExitCod
         bar.finish();
         return Ok(out_of_time(path, out.json, &unfinished, &prepared));
     }
+    let bound = prepared.makespan_lower_bound(&cell);
     if let Some(trace) = &bar.trace {
-        trace.lower_bound(prepared.makespan_lower_bound(&cell));
+        trace.lower_bound(bound);
+    }
+    if let Some(lines) = &bar.lines {
+        lines.lower_bound.store(bound.to_bits(), Ordering::Relaxed);
     }
     let solved = wcp::solve(&cell, &prepared, &opts, &bar).inspect_err(|_| bar.finish())?;
     bar.finish();

@@ -47,7 +47,7 @@ pub use moves::{
 };
 pub use options::{
     ConfigurationChoice, Feedback, Planning, Remedies, SearchOptions, SolveOptions,
-    AUTO_ALL_MAX_MOVES,
+    AUTO_ALL_LIMIT_SHARE, AUTO_ALL_MAX_MOVES,
 };
 pub use prepare::{prepare, sequencer_error, Prepared, Progress, StageTimes, Unfinished};
 

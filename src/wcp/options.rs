@@ -61,7 +61,8 @@ pub enum ConfigurationChoice {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Planning {
     /// [`Planning::All`] for cells of at most [`AUTO_ALL_MAX_MOVES`] moves, else
-    /// [`Planning::Lazy`].
+    /// [`Planning::Lazy`]; under a time limit, lazy first, then all only when that fits
+    /// (see [`AUTO_ALL_LIMIT_SHARE`]).
     #[default]
     Auto,
     /// For each task, the move from the home of its nearest allowed robot that can reach it;
@@ -75,6 +76,11 @@ pub enum Planning {
 /// whole under [`Planning::Auto`]: a second or two of planning, and the sequencer then
 /// searches on exact times from the start.
 pub const AUTO_ALL_MAX_MOVES: usize = 100_000;
+
+/// Under a time limit, [`Planning::Auto`] plans every move only when that is expected to take
+/// at most this share of the limit, at the pace of the moves from home (planned first, as
+/// under [`Planning::Lazy`]); else it stays lazy.
+pub const AUTO_ALL_LIMIT_SHARE: f64 = 0.25;
 
 impl Default for SolveOptions {
     fn default() -> Self {

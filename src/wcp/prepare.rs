@@ -4,7 +4,9 @@
 use super::configurations::{task_configurations, Assignment};
 use super::graph::{check_reachable, plan_reaches};
 use super::moves::{bounds, robot_nodes, MoveStore};
-use super::options::{ConfigurationChoice, Planning, SolveOptions, AUTO_ALL_MAX_MOVES};
+use super::options::{
+    ConfigurationChoice, Planning, SolveOptions, AUTO_ALL_LIMIT_SHARE, AUTO_ALL_MAX_MOVES,
+};
 use super::schedule::Collision;
 use super::sequencer::{Bounds, ExactArcs, SequencerError};
 use crate::cell::{Cell, InputError};
@@ -163,13 +165,13 @@ pub fn prepare(
             n * (n - 1) / 2
         })
         .sum();
-    let plan_all = match opts.planning {
-        Planning::Auto => all_moves <= AUTO_ALL_MAX_MOVES,
+    // Under a time limit, `Auto` plans lazily first and the rest only if it fits (below).
+    let mut plan_all = match opts.planning {
+        Planning::Auto => all_moves <= AUTO_ALL_MAX_MOVES && deadline.is_none(),
         Planning::Lazy => false,
         Planning::All => true,
     };
-    let unfinished;
-    let pairs: Vec<(usize, usize, usize)> = if plan_all {
+    let every_pair = || {
         let mut pairs = Vec::with_capacity(all_moves);
         for r in 0..cell.robots.len() {
             let nodes = robot_nodes(cell, r);
@@ -177,6 +179,11 @@ pub fn prepare(
                 pairs.extend(nodes[i + 1..].iter().map(|&b| (r, a, b)));
             }
         }
+        pairs
+    };
+    let mut unfinished;
+    let mut pairs: Vec<(usize, usize, usize)> = if plan_all {
+        let pairs = every_pair();
         progress.planning(pairs.len());
         let planned = plan_until(&moves, &pairs, deadline, &|| progress.move_planned());
         let done = planned.len();
@@ -199,6 +206,26 @@ pub fn prepare(
         });
         planned
     };
+    // The rest of the moves, when planning them at the pace so far takes at most
+    // `AUTO_ALL_LIMIT_SHARE` of the time limit: exact times from the start, and time left.
+    if let (Planning::Auto, Some(limit), None) = (opts.planning, opts.time_limit, unfinished) {
+        let pace = clock.elapsed().as_secs_f64() / pairs.len().max(1) as f64;
+        let rest = all_moves.saturating_sub(pairs.len()) as f64;
+        if all_moves <= AUTO_ALL_MAX_MOVES
+            && pace * rest <= limit.as_secs_f64() * AUTO_ALL_LIMIT_SHARE
+        {
+            let all = every_pair();
+            progress.planning(all.len());
+            // The moves planned already come from the store, at once.
+            let planned = plan_until(&moves, &all, deadline, &|| progress.move_planned());
+            plan_all = planned.len() == all.len();
+            // Out of time part way: a lazy preparation that knows more moves.
+            pairs.extend(planned);
+            pairs.sort_unstable();
+            pairs.dedup();
+            unfinished = None;
+        }
+    }
     // Out of time, the tasks not reached yet stay unknown: finding whether they can be
     // reached is the planning that did not fit.
     if unfinished.is_none() {

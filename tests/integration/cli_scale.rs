@@ -156,10 +156,14 @@ fn progress_reports_the_best_collision_free_makespan() {
         .lines()
         .rfind(|l| l.starts_with("progress: "))
         .unwrap();
+    let (best, bound) = last
+        .split_once(", lower bound ")
+        .expect("the bound, after planning");
     assert!(
-        last.ends_with(&format!("best makespan {makespan:.3}, collision-free")),
+        best.ends_with(&format!("best makespan {makespan:.3}, collision-free")),
         "{stderr}"
     );
+    assert!(bound.parse::<f64>().unwrap() <= makespan, "{stderr}");
     // The blind plan (shorter, colliding) is not reported as the best any more.
     assert!(result["blind_makespan"].as_f64().unwrap() < makespan);
 }

@@ -217,3 +217,36 @@ fn the_store_plans_the_same_moves_as_planning_among_every_obstacle() {
         }
     }
 }
+
+/// Under a time limit, `Auto` plans the moves from home first and every move only when that
+/// fits in the limit: all of a small cell's moves under a generous limit (as without a
+/// limit), none but the lazy ones beyond `AUTO_ALL_MAX_MOVES`, whatever the limit.
+#[test]
+fn auto_planning_under_a_time_limit_plans_all_only_when_it_fits() {
+    let known_by = |cell: &Cell, planning: Planning, limit: Option<Duration>| {
+        let opts = SolveOptions {
+            time_limit: limit,
+            ..opts(planning)
+        };
+        let prepared = wcp::prepare(cell, &opts, &()).unwrap();
+        assert!(prepared.unfinished.is_none());
+        prepared.known.iter().map(|k| k.len()).sum::<usize>()
+    };
+    let known = |cell: &Cell, limit: Option<Duration>| known_by(cell, Planning::Auto, limit);
+    let all_moves = |cell: &Cell| -> usize {
+        (0..cell.robots.len())
+            .map(|r| robot_nodes(cell, r).len())
+            .map(|n| n * (n - 1))
+            .sum()
+    };
+    let small = cell(2, 20, 2, 1);
+    let hour = Some(Duration::from_secs(3600));
+    assert_eq!(known(&small, hour), all_moves(&small));
+    assert_eq!(known(&small, None), all_moves(&small));
+    let large = cell(8, 300, 4, 1);
+    assert!(all_moves(&large) / 2 > wcp::AUTO_ALL_MAX_MOVES);
+    // The moves lazy planning plans: from the nearest home of each task, both ways.
+    let lazy = known_by(&large, Planning::Lazy, None);
+    assert!(lazy < all_moves(&large) / 10);
+    assert_eq!(known(&large, hour), lazy);
+}
