@@ -37,6 +37,11 @@ pub struct SolveOptions {
     /// best certified plan found so far, and the search its best certified schedule. `None`:
     /// no limit, and the result depends only on the input and the seed.
     pub time_limit: Option<Duration>,
+    /// Under a time limit, with an effort beyond one epoch (`sequencer.effort`): the share of
+    /// the time left after planning that the collision-blind sequencing may take (0.5; clamped
+    /// to 0..=1). The search over remedies, or the refinement of a collision-free plan, gets
+    /// the rest.
+    pub blind_share: f64,
     /// Which moves are planned before sequencing.
     pub planning: Planning,
     /// How arms' configurations at the tasks are found (inverse kinematics).
@@ -92,6 +97,7 @@ impl Default for SolveOptions {
             planner: PlannerOptions::default(),
             check: CheckOptions::default(),
             time_limit: None,
+            blind_share: 0.5,
             planning: Planning::Auto,
             ik: IkSettings::default(),
             configurations: ConfigurationChoice::Chosen,

@@ -166,22 +166,31 @@ pub(crate) fn repairing(opts: &SolveOptions) -> SolveOptions {
     opts
 }
 
-/// The settings of the collision-blind sequencing: with a time limit and an effort beyond
-/// one epoch, the sequencer may take [`BLIND_SHARE`] of the time left, so that the search
-/// over remedies gets the rest when the plan collides (and the plan is refined with it when
-/// it does not).
-pub(crate) fn blind_options(opts: &SolveOptions, prepared: &Prepared) -> SolveOptions {
+/// The collision-blind plan of a solve: [`sequence_with`] from no start, where, with a time
+/// limit and an effort beyond one epoch, the sequencer may take
+/// [`SolveOptions::blind_share`] of the time left, so that the search over remedies gets the
+/// rest when the plan collides (and the plan is refined with it when it does not).
+pub(crate) fn sequence_blind(
+    cell: &Cell,
+    prepared: &Prepared,
+    opts: &SolveOptions,
+    progress: &dyn Progress,
+) -> Result<Solution, InputError> {
+    let opts = blind_options(opts, prepared);
+    sequence_with(cell, prepared, &[], &opts, None, progress)
+}
+
+fn blind_options(opts: &SolveOptions, prepared: &Prepared) -> SolveOptions {
     let mut opts = opts.clone();
     if let (Some(deadline), true) = (prepared.deadline, opts.sequencer.effort > 1) {
         let now = Instant::now();
-        let share = deadline.saturating_duration_since(now).mul_f64(BLIND_SHARE);
+        let share = deadline
+            .saturating_duration_since(now)
+            .mul_f64(opts.blind_share.clamp(0.0, 1.0));
         opts.sequencer.deadline = Some(now + share);
     }
     opts
 }
-
-/// The share of the time left that the collision-blind sequencing may take (see [`blind_options`]).
-pub(crate) const BLIND_SHARE: f64 = 0.5;
 
 /// Plans the moves of `sol` that `inst` only bounds and adds their times to `known` (both
 /// ways); whether the plan's costs were exact already (no move missing, or each bound met).

@@ -215,3 +215,34 @@ fn the_routes_below_the_best_known_makespans_are_what_they_claim() {
         assert!(makespan < best_known, "{cell}");
     }
 }
+
+/// The time a limit leaves after the first plan refines it: with no share of the time for
+/// the first plan (its restarts' constructions and descents, their chains cut at once), the
+/// answer's collision-blind plan is shorter than that first plan, which only the refinement
+/// can make it (a TSPLIB cell, rat99 with two robots, where search pays).
+#[test]
+fn the_time_left_refines_the_first_plan() {
+    use std::time::{Duration, Instant};
+    use workcell::wcp::{self, SolveOptions};
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("benchmarks/mtsp-best/rat99-m2-cell.json");
+    let cell = workcell::cell::load_cell(&file).unwrap().cell;
+    let mut limited = SolveOptions {
+        time_limit: Some(Duration::from_secs(2)),
+        blind_share: 0.0,
+        ..SolveOptions::default()
+    };
+    limited.sequencer.effort = usize::MAX;
+    let prepared = wcp::prepare(&cell, &limited, &()).unwrap();
+    let refined = wcp::solve(&cell, &prepared, &limited, &()).unwrap();
+    // The first plan as the solve made it: its chains stop at once.
+    let mut cut = limited.clone();
+    cut.sequencer.deadline = Some(Instant::now());
+    let first = wcp::sequence(&cell, &prepared, &[], &cut).unwrap().makespan;
+    assert!(refined.collision_free);
+    assert!(
+        refined.blind_makespan < first,
+        "{} is not shorter than the first plan {first}",
+        refined.blind_makespan
+    );
+}

@@ -12,7 +12,7 @@ use crate::wcp::moves::MoveStore;
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Activity, Collision, Delay, Schedule, Segment};
-use crate::wcp::sequence::{blind_options, repairing, sequence_with};
+use crate::wcp::sequence::{repairing, sequence_blind, sequence_with};
 use crate::wcp::sequencer::{Conflict, Solution};
 use std::time::Instant;
 
@@ -25,14 +25,7 @@ pub fn solve(
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
     let clock = Instant::now();
-    let blind = sequence_with(
-        cell,
-        prepared,
-        &[],
-        &blind_options(opts, prepared),
-        None,
-        progress,
-    )?;
+    let blind = sequence_blind(cell, prepared, opts, progress)?;
     let mut times = prepared.times;
     times.sequencing += clock.elapsed();
     let mut greedy = Greedy {

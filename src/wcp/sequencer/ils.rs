@@ -27,8 +27,8 @@ pub(super) enum Start {
 const GRANULAR_ROUNDS: usize = 10;
 
 /// The best plan over `opts.restarts` restarts, each searched for `opts.effort` epochs.
-/// Ties go to the lowest restart index, so the result does not depend on how the threads ran. `on_best` hears every makespan that
-/// improves a restart's best, from any thread.
+/// Ties go to the lowest restart index, so the result does not depend on how the threads
+/// ran. `on_best` hears every makespan that improves a restart's best, from any thread.
 pub(super) fn search(
     model: &Model,
     opts: &SequencerOptions,

@@ -31,10 +31,10 @@
 
 mod order;
 mod pending;
-mod refine;
+mod roots;
 
 use super::fingerprint::fingerprint;
-use super::outcome::{build, Iteration, Remedy, Solved};
+use super::outcome::{Iteration, Remedy, Solved};
 use super::reconfigure::{self, reconfigurations, Reconfig};
 use super::remedies::{candidates, Child, Ctx, View};
 use crate::cell::{Cell, InputError};
@@ -43,7 +43,7 @@ use crate::wcp::legs::{default_legs, Legs};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
-use crate::wcp::sequence::{blind_options, sequence_with};
+use crate::wcp::sequence::sequence_blind;
 use crate::wcp::sequencer::{self, Conflict};
 use order::{Key, Ordered, Rank};
 use rayon::prelude::*;
@@ -170,17 +170,9 @@ pub(super) fn solve(
     opts: &SolveOptions,
     progress: &dyn Progress,
 ) -> Result<Solved, InputError> {
-    let moves = &prepared.moves;
     let mut times = prepared.times;
     let clock = Instant::now();
-    let mut blind = sequence_with(
-        cell,
-        prepared,
-        &[],
-        &blind_options(opts, prepared),
-        None,
-        progress,
-    )?;
+    let mut blind = sequence_blind(cell, prepared, opts, progress)?;
     times.sequencing += clock.elapsed();
     let mut search = Search {
         cell,
@@ -199,26 +191,7 @@ pub(super) fn solve(
         furthest: None,
         capped: 0,
     };
-    let legs = default_legs(cell.robots.len());
-    search
-        .seen
-        .insert(fingerprint(&blind.sequences, &legs, moves.assignment()));
-    let root = build(cell, &blind.sequences, &legs, moves)?;
-    let root = search.add(Node {
-        routes: Arc::new(blind.sequences.clone()),
-        conflicts: Arc::new(Vec::new()),
-        legs,
-        makespan: root.makespan,
-        robots: root.robots,
-        parent: None,
-        remedy: None,
-        depth: 0,
-        discrepancies: 0,
-        deviated_at: 0,
-        pending: None,
-        outcome: None,
-        prepared: None,
-    });
+    let root = search.add_root(&blind.sequences)?.expect("the first node");
     search.check_all(&[root], progress);
     if search.collision(root).is_some() {
         search.enqueue(root);

@@ -1,6 +1,7 @@
-//! Anytime refinement: with time left under a time limit once the search has run out of
-//! nodes, the sequencer searches on from the collision-blind plan, and a shorter plan
-//! becomes a new root of the search (checked, and searched when it collides).
+//! The roots of the search: the collision-blind plan, and its anytime refinements. With time
+//! left under a time limit once the search has run out of nodes, the sequencer searches on
+//! from the collision-blind plan, and a shorter plan becomes a new root of the search
+//! (checked, and searched when it collides).
 
 use super::{Node, Search};
 use crate::cell::InputError;
@@ -14,6 +15,38 @@ use std::sync::Arc;
 use std::time::Instant;
 
 impl Search<'_> {
+    /// Adds a root: `sequences` with every robot on its default legs, timed, not checked yet;
+    /// none when that schedule was seen before.
+    pub(super) fn add_root(
+        &mut self,
+        sequences: &[Vec<usize>],
+    ) -> Result<Option<usize>, InputError> {
+        let legs = default_legs(self.cell.robots.len());
+        let moves = &self.prepared.moves;
+        if !self
+            .seen
+            .insert(fingerprint(sequences, &legs, moves.assignment()))
+        {
+            return Ok(None);
+        }
+        let timed = build(self.cell, sequences, &legs, moves)?;
+        Ok(Some(self.add(Node {
+            routes: Arc::new(sequences.to_vec()),
+            conflicts: Arc::new(Vec::new()),
+            legs,
+            makespan: timed.makespan,
+            robots: timed.robots,
+            parent: None,
+            remedy: None,
+            depth: 0,
+            discrepancies: 0,
+            deviated_at: 0,
+            pending: None,
+            outcome: None,
+            prepared: None,
+        })))
+    }
+
     /// Refines the collision-blind plan until the time limit (the first sequencing got only
     /// a share of it, see [`blind_options`](crate::wcp::sequence::blind_options)), when the
     /// sequencer may search beyond one epoch, the limit leaves time and the search has not
@@ -45,30 +78,9 @@ impl Search<'_> {
             return Ok(false);
         }
         *blind = refined;
-        let legs = default_legs(self.cell.robots.len());
-        let moves = &self.prepared.moves;
-        if !self
-            .seen
-            .insert(fingerprint(&blind.sequences, &legs, moves.assignment()))
-        {
+        let Some(id) = self.add_root(&blind.sequences)? else {
             return Ok(false);
-        }
-        let timed = build(self.cell, &blind.sequences, &legs, moves)?;
-        let id = self.add(Node {
-            routes: Arc::new(blind.sequences.clone()),
-            conflicts: Arc::new(Vec::new()),
-            legs,
-            makespan: timed.makespan,
-            robots: timed.robots,
-            parent: None,
-            remedy: None,
-            depth: 0,
-            discrepancies: 0,
-            deviated_at: 0,
-            pending: None,
-            outcome: None,
-            prepared: None,
-        });
+        };
         self.check_all(&[id], progress);
         let searched = self.collision(id).is_some() && self.worth(id);
         if searched {
