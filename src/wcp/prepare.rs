@@ -20,21 +20,23 @@ use std::time::{Duration, Instant};
 /// use std::sync::atomic::{AtomicUsize, Ordering};
 /// use std::sync::Mutex;
 /// use workcell::wcp::{prepare, solve, Collision, Progress, SolveOptions};
-/// /// Counts the moves planned and keeps each round's makespan.
+/// /// Counts the moves planned, keeps each round's makespan and the best certified one.
 /// #[derive(Default)]
-/// struct Log { moves: AtomicUsize, rounds: Mutex<Vec<f64>> }
+/// struct Log { moves: AtomicUsize, rounds: Mutex<Vec<f64>>, certified: Mutex<Option<f64>> }
 /// impl Progress for Log {
 ///     fn move_planned(&self) { self.moves.fetch_add(1, Ordering::Relaxed); }
 ///     fn iteration(&self, _k: usize, makespan: f64, _c: Option<&Collision>) {
 ///         self.rounds.lock().unwrap().push(makespan);
 ///     }
+///     fn certified(&self, makespan: f64) { *self.certified.lock().unwrap() = Some(makespan); }
 /// }
 /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
 /// let (opts, log) = (SolveOptions::default(), Log::default());
 /// let solved = solve(&cell, &prepare(&cell, &opts, &log)?, &opts, &log)?;
 /// assert!(log.moves.into_inner() > 0);
-/// // The last round checked is the final schedule.
+/// // The last round checked is the final schedule, and the last certified one too.
 /// assert_eq!(log.rounds.into_inner().unwrap().last(), Some(&solved.schedule.makespan));
+/// assert_eq!(log.certified.into_inner().unwrap(), Some(solved.schedule.makespan));
 /// # Ok::<(), workcell::cell::InputError>(())
 /// ```
 pub trait Progress: Sync {
@@ -49,8 +51,8 @@ pub trait Progress: Sync {
     /// The sequencer found a plan of this makespan (on the travel times it knows; from any
     /// thread).
     fn best(&self, _makespan: f64) {}
-    /// A schedule of this makespan was certified collision-free (after its
-    /// [`iteration`](Progress::iteration)).
+    /// A schedule of this makespan was certified collision-free and is the best answer so far
+    /// (after its [`iteration`](Progress::iteration)): the last one heard is the solve's.
     fn certified(&self, _makespan: f64) {}
 }
 

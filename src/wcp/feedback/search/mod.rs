@@ -382,14 +382,12 @@ impl Search<'_> {
                 outcome.collision.as_ref(),
             );
             let status = outcome.status();
-            if status == Status::Free {
-                progress.certified(self.nodes[id].makespan);
-            }
             self.nodes[id].outcome = Some(outcome);
             match status {
                 Status::Free if self.worth(id) => {
                     self.best = Some(id);
                     self.best_at = self.checked;
+                    progress.certified(self.nodes[id].makespan);
                 }
                 Status::Free | Status::Undecided => {}
                 Status::Collides => {
