@@ -39,7 +39,7 @@ pub struct SolveOptions {
     pub time_limit: Option<Duration>,
     /// Under a time limit, with an effort beyond one epoch (`sequencer.effort`): the share of
     /// the time left after planning that the collision-blind sequencing may take (0.5; clamped
-    /// to 0..=1). The search over remedies, or the refinement of a collision-free plan, gets
+    /// to 0..=1, NaN as 0). The search over remedies, or the refinement of a collision-free plan, gets
     /// the rest.
     pub blind_share: f64,
     /// Which moves are planned before sequencing.

@@ -186,7 +186,11 @@ fn blind_options(opts: &SolveOptions, prepared: &Prepared) -> SolveOptions {
         let now = Instant::now();
         let share = deadline
             .saturating_duration_since(now)
-            .mul_f64(opts.blind_share.clamp(0.0, 1.0));
+            // A NaN share is 0 (`clamp` keeps NaN, and `mul_f64` panics on it).
+            .mul_f64(match opts.blind_share.is_nan() {
+                true => 0.0,
+                false => opts.blind_share.clamp(0.0, 1.0),
+            });
         opts.sequencer.deadline = Some(now + share);
     }
     opts

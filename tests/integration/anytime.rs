@@ -246,3 +246,23 @@ fn the_time_left_refines_the_first_plan() {
         refined.blind_makespan
     );
 }
+
+/// A share of the time outside 0..=1, or NaN, is taken as its nearest bound (NaN as 0), never
+/// a panic.
+#[test]
+fn any_blind_share_is_taken() {
+    use std::time::Duration;
+    use workcell::wcp::{self, SolveOptions};
+    let cell = crate::common::shipped_cell("feedback-cell.json");
+    for share in [f64::NAN, -1.0, 7.0, f64::INFINITY] {
+        let mut opts = SolveOptions {
+            time_limit: Some(Duration::from_millis(300)),
+            blind_share: share,
+            ..SolveOptions::default()
+        };
+        opts.sequencer.effort = usize::MAX;
+        let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+        let solved = wcp::solve(&cell, &prepared, &opts, &()).unwrap();
+        assert!(solved.collision_free, "share {share}");
+    }
+}

@@ -48,7 +48,7 @@ impl Search<'_> {
     }
 
     /// Refines the collision-blind plan until the time limit (the first sequencing got only
-    /// a share of it, see [`blind_options`](crate::wcp::sequence::blind_options)), when the
+    /// a share of it, see [`sequence_blind`](crate::wcp::sequence::sequence_blind)), when the
     /// sequencer may search beyond one epoch, the limit leaves time and the search has not
     /// stopped for want of progress. A shorter plan, unlike any before, becomes `blind` and
     /// a new root: checked now, and queued when it collides and may still beat the best
