@@ -4,8 +4,8 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use workcell::wcp::sequencer::{
-    count_violations, solve, steps, Conflict, Instance, SequencerError, SequencerOptions, Solution,
-    Step,
+    count_violations, solve, solve_from, steps, Conflict, Instance, SequencerError,
+    SequencerOptions, Solution, Step,
 };
 
 /// Random instance: points in a 10 × 10 square, one home per robot, travel
@@ -218,6 +218,79 @@ fn same_seed_same_solution_whatever_the_threads() {
 }
 
 /// Conflicts between the first two busy robots of the blind optimum.
+/// A target (a repair's aim) missed changes nothing; met, it ends the search: the first
+/// wave of restarts stops at its first plan, and the others never run.
+#[test]
+fn a_target_ends_the_search_once_met_and_changes_nothing_when_missed() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let inst = random_instance(7, 6, 40, 0.5, 10);
+    let opts = SequencerOptions {
+        seed: 42,
+        iterations: 50,
+        exact_limit: 0,
+        ..SequencerOptions::default()
+    };
+    let heard = AtomicUsize::new(0);
+    let count = |_: f64| {
+        heard.fetch_add(1, Ordering::Relaxed);
+    };
+    let free = solve_from(&inst, &[], &opts, None, &count).unwrap();
+    let untargeted = heard.swap(0, Ordering::Relaxed);
+    let aim = |target: f64| SequencerOptions {
+        target: Some(target),
+        ..opts.clone()
+    };
+    assert_eq!(solve(&inst, &[], &aim(0.5 * free.makespan)).unwrap(), free);
+    let met = solve_from(&inst, &[], &aim(f64::INFINITY), None, &count).unwrap();
+    assert_valid(&inst, &[], &met);
+    assert_eq!(
+        heard.load(Ordering::Relaxed),
+        2,
+        "one plan per restart of the first wave"
+    );
+    assert!(
+        untargeted > 4,
+        "every restart improves at least once: {untargeted}"
+    );
+    // Met at the free search's makespan: no longer than it, found as soon as it is.
+    let exact = solve(&inst, &[], &aim(free.makespan)).unwrap();
+    assert!(exact.makespan <= free.makespan * (1.0 + 1e-9));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    assert_eq!(
+        pool.install(|| solve(&inst, &[], &aim(free.makespan)))
+            .unwrap(),
+        exact
+    );
+    // One chain, aimed at a makespan it passes on the way: it stops at the first plan that
+    // meets the aim.
+    let heard = std::sync::Mutex::new(Vec::new());
+    let record = |m: f64| heard.lock().unwrap().push(m);
+    let one = SequencerOptions {
+        restarts: 1,
+        iterations: 400,
+        ..opts.clone()
+    };
+    solve_from(&inst, &[], &one, None, &record).unwrap();
+    let bests = std::mem::take(&mut *heard.lock().unwrap());
+    assert!(bests.len() > 2, "the chain improves: {bests:?}");
+    let target = bests[bests.len() / 2];
+    let aimed = SequencerOptions {
+        target: Some(target),
+        ..one
+    };
+    let sol = solve_from(&inst, &[], &aimed, None, &record).unwrap();
+    let stopped = heard.into_inner().unwrap();
+    assert_eq!(
+        stopped,
+        bests[..=bests.len() / 2],
+        "stops where it meets {target}"
+    );
+    assert!(sol.makespan <= target * (1.0 + 1e-9));
+}
+
 fn conflicts_against(sol: &Solution) -> Vec<Conflict> {
     let busy: Vec<usize> = (0..sol.sequences.len())
         .filter(|&r| !sol.sequences[r].is_empty())

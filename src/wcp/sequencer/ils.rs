@@ -22,6 +22,10 @@ pub(super) enum Start {
     All(Plan),
 }
 
+/// Restarts run in the first wave of a search with an aim ([`SequencerOptions::target`]):
+/// two, one per core of the machines the project is measured on.
+const AIMED_WAVE: usize = 2;
+
 /// A granular search makes this many times `iterations` rounds per restart: its rounds cost
 /// what the perturbation touched, not the whole plan.
 const GRANULAR_ROUNDS: usize = 10;
@@ -52,17 +56,30 @@ pub(super) fn search(
         Start::Fresh(_) => None,
     };
     let restarts = opts.restarts.max(1);
-    let mut chains: Vec<Plan> = (0..restarts)
-        .into_par_iter()
-        .map(|k| {
-            let first = match (&start, &shared) {
-                (_, Some(descended)) => Begin::Descended(descended.clone()),
-                (Start::Fresh(Some(plan)), None) if k == 0 => Begin::From(plan.clone()),
-                _ => Begin::Built,
-            };
-            restart(model, opts, &mut stream(opts.seed, k), first, k, on_best)
-        })
-        .collect();
+    let first_chain = |k: usize| {
+        let first = match (&start, &shared) {
+            (_, Some(descended)) => Begin::Descended(descended.clone()),
+            (Start::Fresh(Some(plan)), None) if k == 0 => Begin::From(plan.clone()),
+            _ => Begin::Built,
+        };
+        restart(model, opts, &mut stream(opts.seed, k), first, k, on_best)
+    };
+    let mut chains: Vec<Plan> = match opts.target {
+        // With an aim, the first restarts (restart 0 from the given plan) run first: a
+        // repair usually meets its aim there, and the others are not needed. A fixed wave,
+        // not one per thread, so that the result does not depend on the threads.
+        Some(_) => {
+            let wave = AIMED_WAVE.min(restarts);
+            let mut chains: Vec<Plan> = (0..wave).into_par_iter().map(first_chain).collect();
+            let best = &chains[best_index(&chains)];
+            if reached(opts, best) {
+                return best.clone();
+            }
+            chains.par_extend((wave..restarts).into_par_iter().map(first_chain));
+            chains
+        }
+        None => (0..restarts).into_par_iter().map(first_chain).collect(),
+    };
     // Iterated local search over epochs. Chain 0 is kicked (a large ruin and recreate) from
     // the best plan of all and searched again: it intensifies. Every other chain is kicked
     // from its own best while that keeps improving, and starts afresh from a new
@@ -71,7 +88,7 @@ pub(super) fn search(
     let mut leader = chains[best_index(&chains)].clone();
     let mut improving = vec![true; restarts];
     for epoch in 1..opts.effort.max(1) {
-        if opts.deadline.is_some_and(|d| Instant::now() >= d) {
+        if opts.deadline.is_some_and(|d| Instant::now() >= d) || reached(opts, &leader) {
             break;
         }
         let next: Vec<(Plan, bool)> = chains
@@ -114,6 +131,16 @@ pub(super) fn search(
     }
     leader
 }
+
+/// Whether `plan` meets the search's aim ([`SequencerOptions::target`]).
+fn reached(opts: &SequencerOptions, plan: &Plan) -> bool {
+    let obj = plan.obj();
+    opts.target
+        .is_some_and(|aim| obj.viol == 0 && obj.makespan <= aim * (1.0 + TARGET_TOL))
+}
+
+/// Relative tolerance of [`reached`]: a plan equal to the aim but for rounding meets it.
+const TARGET_TOL: f64 = 1e-9;
 
 /// The index of the best plan, the lowest on ties (so that the result does not depend on
 /// how the threads ran).
@@ -216,6 +243,9 @@ fn chain(
 ) -> Plan {
     let mut best = current.clone();
     on_best(best.obj().makespan);
+    if reached(opts, &best) {
+        return best;
+    }
     let (rounds, slack) = if model.neighbours.is_some() {
         (opts.iterations * GRANULAR_ROUNDS, GRANULAR_RECORD_SLACK)
     } else {
@@ -243,6 +273,9 @@ fn chain(
             best = candidate.clone();
             on_best(best.obj().makespan);
             since = 0;
+            if reached(opts, &best) {
+                break;
+            }
         }
         // Record-to-record travel: plans a little worse than the best are
         // accepted too, so the chain can leave a basin without drifting away.

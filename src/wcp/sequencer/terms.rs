@@ -56,7 +56,7 @@ pub struct Conflict {
 }
 
 /// Knobs of [`solve`](super::solve).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SequencerOptions {
     /// Seed of the random perturbations; the result depends only on it and the input.
     pub seed: u64,
@@ -81,6 +81,12 @@ pub struct SequencerOptions {
     /// (a granular model then inserts the tasks left near their neighbours): the solve's own
     /// limit, while `deadline` leaves time to plan the plan found.
     pub construction_deadline: Option<Instant>,
+    /// When given, a makespan good enough: a restart stops once its plan is this short with
+    /// no violation, and restart 0 runs alone first, the others only when it falls short.
+    /// A repair's aim (the search over remedies gives the collision-blind makespan, which a
+    /// plan under more conflicts is not expected to beat). Deterministic: every restart
+    /// stops by its own plan alone.
+    pub target: Option<f64>,
 }
 
 impl Default for SequencerOptions {
@@ -96,6 +102,7 @@ impl Default for SequencerOptions {
             exact_limit: 10_000_000,
             deadline: None,
             construction_deadline: None,
+            target: None,
         }
     }
 }
