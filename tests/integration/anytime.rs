@@ -42,8 +42,10 @@ fn effort_is_deterministic_and_never_worse() {
     let mut last = f64::INFINITY;
     let mut gained = false;
     for effort in 1..=4 {
+        // Short chains, so that the first epoch leaves the later ones work to do.
         let opts = SequencerOptions {
             effort,
+            iterations: 50,
             exact_limit: 0,
             ..SequencerOptions::default()
         };
@@ -135,7 +137,9 @@ fn trace_rows(text: &str) -> Vec<Row> {
 
 /// The trace is well formed: time goes forward, each stage's makespans go down, no
 /// makespan beats the lower bound, the certified rows are the certified stage, and the last
-/// of them is the answer; under a time limit the answer is no worse than without one.
+/// of them is the answer. (Whether a time limit gives a plan no worse than the default
+/// depends on the machine's load: a loaded machine may cut the first epoch short; the
+/// deterministic `--effort` carries that promise, tested above.)
 #[test]
 fn the_trace_is_the_anytime_curve_and_ends_at_the_answer() {
     let dir = temp_dir_absent("anytime", "trace");
@@ -174,10 +178,6 @@ fn the_trace_is_the_anytime_curve_and_ends_at_the_answer() {
             result["makespan"].as_f64().unwrap(),
             "{cell}"
         );
-        let default = workcell(&["solve", "--json", cell]);
-        let default: serde_json::Value = serde_json::from_slice(&default.stdout).unwrap();
-        let (limited, plain) = (result["makespan"].as_f64(), default["makespan"].as_f64());
-        assert!(limited.unwrap() <= plain.unwrap() * (1.0 + 1e-9), "{cell}");
     }
 }
 
@@ -214,6 +214,21 @@ fn the_routes_below_the_best_known_makespans_are_what_they_claim() {
         assert!((makespan - claimed).abs() < 0.005, "{cell}: {makespan}");
         assert!(makespan < best_known, "{cell}");
     }
+}
+
+/// The sequencer's exchanges of route ends (2-opt*, `offers::offer_crosses`) are what a
+/// min-max plan with long routes needs: the default solve of rat99 with two robots comes
+/// within 1 % of the best known 674.05 (689.16 without them, 2.2 % above).
+#[test]
+fn route_end_exchanges_bring_the_default_near_the_best_known() {
+    use workcell::wcp::{self, SolveOptions};
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("benchmarks/mtsp-best/rat99-m2-cell.json");
+    let cell = workcell::cell::load_cell(&file).unwrap().cell;
+    let opts = SolveOptions::default();
+    let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
+    let plan = wcp::sequence(&cell, &prepared, &[], &opts).unwrap();
+    assert!(plan.makespan <= 674.05 * 1.01, "{}", plan.makespan);
 }
 
 /// The time a limit leaves after the first plan refines it: with no share of the time for

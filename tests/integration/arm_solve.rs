@@ -419,22 +419,25 @@ fn the_search_may_switch_an_arms_configuration() {
         serde_json::from_slice(&o.stdout).unwrap()
     };
     let solved = run(all);
-    let round = (solved["feedback"].as_array().unwrap().iter())
-        .find(|r| r["remedy"] == "reconfigure")
+    let rounds = solved["feedback"].as_array().unwrap();
+    let at = (rounds.iter())
+        .position(|r| r["remedy"] == "reconfigure")
         .expect("a reconfiguration on the answer's branch");
-    let change = &round["reconfigure"];
+    let change = &rounds[at]["reconfigure"];
     let (arm, task) = (
         change["robot"].as_str().unwrap(),
         change["at"].as_str().unwrap(),
     );
-    // Where the arm does that task, the result gives the new configuration.
-    let taken = |s: &Value| -> Value {
-        let k = (s["sequences"][arm].as_array().unwrap().iter())
-            .position(|t| t == task)
-            .expect("the arm does the task");
-        s["configurations"][arm][k].clone()
-    };
-    assert_eq!(taken(&solved), change["joints"]);
+    // Where the arm still does that task, the result gives the new configuration; only a
+    // later re-sequencing may have given the task to another robot.
+    let done = (solved["sequences"][arm].as_array().unwrap().iter()).position(|t| t == task);
+    match done {
+        Some(k) => assert_eq!(solved["configurations"][arm][k], change["joints"]),
+        None => assert!(
+            rounds[at..].iter().any(|r| r["remedy"] == "resequence"),
+            "{arm} no longer does {task}, yet nothing re-sequenced it"
+        ),
+    }
     let result = dir.join("result.json");
     std::fs::write(&result, solved.to_string()).unwrap();
     let o = workcell(&["evaluate", cell, result.to_str().unwrap(), "--json"]);

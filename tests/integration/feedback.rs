@@ -106,7 +106,14 @@ fn every_conflict_family_is_solved_without_divergence() {
         .into_iter()
         .filter(|k| *k != ConflictKind::Ring)
     {
-        let cell = conflict_cell(kind, 0);
+        // Cell 0 of the workpiece family has a collision-free blind plan (since the
+        // sequencer exchanges route ends, 2-opt*): cell 1 exercises the feedback.
+        let index = if kind == ConflictKind::Workpiece {
+            1
+        } else {
+            0
+        };
+        let cell = conflict_cell(kind, index);
         let solved = solve(&cell);
         // The targets, where it sets one: a narrow swap within 35 %, the junction
         // within 40 % (the README's table gives every cell).
@@ -123,7 +130,7 @@ fn every_conflict_family_is_solved_without_divergence() {
             ConflictKind::Junction => 36.765,
             ConflictKind::Doorway => 30.988,
             ConflictKind::HomeInWay => 21.286,
-            ConflictKind::Workpiece => 23.987,
+            ConflictKind::Workpiece => 22.435,
             ConflictKind::Aisles => 59.399,
             ConflictKind::Ring => unreachable!("rings are left out"),
         };

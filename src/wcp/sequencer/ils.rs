@@ -44,13 +44,7 @@ pub(super) fn search(
     let shared = match &start {
         Start::All(plan) => {
             let mut plan = plan.clone();
-            descend(
-                model,
-                &mut plan,
-                &mut Scratch::default(),
-                None,
-                opts.deadline,
-            );
+            descend(model, opts, &mut plan, &mut Scratch::default(), None);
             Some(plan)
         }
         Start::Fresh(_) => None,
@@ -109,13 +103,7 @@ pub(super) fn search(
                 }
                 let mut plan = from.clone();
                 let touched = kick(model, &mut plan, &mut rng, &mut scratch);
-                descend(
-                    model,
-                    &mut plan,
-                    &mut scratch,
-                    Some(&touched),
-                    opts.deadline,
-                );
+                descend(model, opts, &mut plan, &mut scratch, Some(&touched));
                 let found = chain(model, opts, &mut rng, &mut scratch, plan, on_best);
                 match found.obj().better(&own.obj()) {
                     true => (found, true),
@@ -182,11 +170,12 @@ const GRANULAR_RECORD_SLACK: f64 = 0.005;
 /// A granular descent stops at `deadline` (the plan is whole at every step).
 fn descend(
     model: &Model,
+    opts: &SequencerOptions,
     plan: &mut Plan,
     scratch: &mut Scratch,
     touched: Option<&[usize]>,
-    deadline: Option<Instant>,
 ) {
+    let deadline = opts.deadline;
     if model.neighbours.is_none() {
         return local_search(model, plan, scratch);
     }
@@ -226,7 +215,7 @@ fn restart(
         }
     };
     if !descended {
-        descend(model, &mut current, &mut scratch, None, opts.deadline);
+        descend(model, opts, &mut current, &mut scratch, None);
     }
     chain(model, opts, rng, &mut scratch, current, on_best)
 }
@@ -262,13 +251,7 @@ fn chain(
         since += 1;
         let mut candidate = current.clone();
         let touched = ruin_recreate(model, &mut candidate, rng, scratch);
-        descend(
-            model,
-            &mut candidate,
-            scratch,
-            Some(&touched),
-            opts.deadline,
-        );
+        descend(model, opts, &mut candidate, scratch, Some(&touched));
         if candidate.obj().better(&best.obj()) {
             best = candidate.clone();
             on_best(best.obj().makespan);

@@ -1,12 +1,12 @@
 //! Descent to a local optimum: shift segments of 1 to 3 tasks (relocate and
 //! or-opt, in place or reversed, within a route or to another robot), swap
-//! two tasks, reverse part of a route (2-opt).
+//! two tasks, reverse part of a route (2-opt), exchange the tails of two routes (2-opt*).
 //!
 //! Route times of candidates come from O(1) differences of arc costs; the
 //! plan recomputes them exactly when a move is made.
 
 use super::model::Model;
-use super::offers::{offer_reverse, offer_swap, Cut, Pick};
+use super::offers::{offer_crosses, offer_reverse, offer_swap, Cut, Pick};
 use super::plan::{Plan, Scratch};
 
 /// Improves `plan` until no move of any neighbourhood does.
@@ -16,6 +16,7 @@ pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch
         improved |= shift_pass(model, plan, scratch, 1);
         improved |= swap_pass(model, plan, scratch);
         improved |= reverse_pass(model, plan, scratch);
+        improved |= cross_pass(model, plan, scratch);
         improved |= shift_pass(model, plan, scratch, 2);
         improved |= shift_pass(model, plan, scratch, 3);
         if !improved {
@@ -97,6 +98,19 @@ fn reverse_pass(model: &Model, plan: &mut Plan, scratch: &mut Scratch) -> bool {
             }
             improved |= pick.commit(model, plan, scratch);
             i += 1;
+        }
+    }
+    improved
+}
+
+/// Exchanges the tails of every pair of routes (2-opt*).
+fn cross_pass(model: &Model, plan: &mut Plan, scratch: &mut Scratch) -> bool {
+    let mut improved = false;
+    for r1 in 0..model.robots {
+        for r2 in r1 + 1..model.robots {
+            let mut pick = Pick::new(plan);
+            offer_crosses(model, plan, scratch, &mut pick, (r1, r2));
+            improved |= pick.commit(model, plan, scratch);
         }
     }
     improved

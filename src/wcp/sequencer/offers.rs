@@ -3,7 +3,7 @@
 //! one ([`super::granular`]), which differ only in which moves they look at.
 
 use super::model::Model;
-use super::plan::{Move, Obj, Plan, Scratch};
+use super::plan::{Ends, Move, Obj, Plan, Scratch};
 use super::terms::task_node;
 
 /// The best of the moves offered from one anchor, if it beats the plan.
@@ -205,6 +205,105 @@ pub(super) fn offer_reverse(
         &times,
         scratch,
     );
+}
+
+impl Ends {
+    /// Sums robot `r`'s times over its route `own` and the other's, `other`.
+    fn sum(&mut self, model: &Model, r: usize, own: &[usize], other: &[usize]) {
+        let c = |a: usize, b: usize| model.c(r, a, b);
+        let dn = &model.dn;
+        let fits = |v: usize| v == 0 || model.can(r, v - 1);
+        let (n, m) = (own.len(), other.len());
+        let reset = |v: &mut Vec<f64>, len: usize| {
+            v.clear();
+            v.resize(len, 0.0);
+        };
+        reset(&mut self.head, n);
+        reset(&mut self.own_tail, n);
+        for p in 1..n {
+            self.head[p] = self.head[p - 1] + c(own[p - 1], own[p]) + dn[own[p]];
+        }
+        for p in (0..n - 1).rev() {
+            self.own_tail[p] = c(own[p], own[p + 1]) + dn[own[p + 1]] + self.own_tail[p + 1];
+        }
+        reset(&mut self.tail, m);
+        reset(&mut self.back, m);
+        reset(&mut self.back_head, m);
+        self.fits_after.clear();
+        self.fits_after.resize(m, true);
+        self.fits_before.clear();
+        self.fits_before.resize(m, true);
+        for p in (0..m - 1).rev() {
+            let (u, v) = (other[p], other[p + 1]);
+            self.tail[p] = c(u, v) + dn[v] + self.tail[p + 1];
+            self.back_head[p] = self.back_head[p + 1] + c(v, u) + dn[u];
+            self.fits_after[p] = self.fits_after[p + 1] && fits(u);
+        }
+        for p in 1..m {
+            let (u, v) = (other[p - 1], other[p]);
+            self.back[p] = c(v, u) + dn[u] + self.back[p - 1];
+            self.fits_before[p] = self.fits_before[p - 1] && fits(v);
+        }
+    }
+}
+
+/// Offers every exchange of the ends of the routes of `r1` and `r2` (2-opt*, Potvin &
+/// Rousseau, "An exchange heuristic for routing problems with time windows", 1995), plain
+/// and with the pieces reversed (for symmetric costs, the two ways to reconnect two routes
+/// cut once each): the inter-route move that splits a long route where another one would
+/// take its end. Each robot's times over the heads and tails of both routes are summed
+/// once ([`Ends`]), so that each exchange is costed in O(1).
+pub(super) fn offer_crosses(
+    model: &Model,
+    plan: &Plan,
+    scratch: &mut Scratch,
+    pick: &mut Pick,
+    (r1, r2): (usize, usize),
+) {
+    let (x, y) = (&plan.routes[r1], &plan.routes[r2]);
+    let [mut e1, mut e2] = std::mem::take(&mut scratch.ends);
+    e1.sum(model, r1, x, y);
+    e2.sum(model, r2, y, x);
+    let (c1, c2) = (|a, b| model.c(r1, a, b), |a, b| model.c(r2, a, b));
+    let dn = &model.dn;
+    let (nx, ny) = (x.len(), y.len());
+    for i in 0..nx - 1 {
+        // r2 takes r1's nodes after i, either way.
+        if !e2.fits_after[i + 1] {
+            continue;
+        }
+        let v = x[i + 1];
+        for j in 0..ny - 1 {
+            let u = y[j + 1];
+            // Both ends home alone: the plan itself.
+            if e1.fits_after[j + 1] && !(i == nx - 2 && j == ny - 2) {
+                let t1 = e1.head[i] + c1(x[i], u) + dn[u] + e1.tail[j + 1];
+                let t2 = e2.head[j] + c2(y[j], v) + dn[v] + e2.tail[i + 1];
+                let mv = Move::Cross {
+                    r1,
+                    i,
+                    r2,
+                    j,
+                    rev: false,
+                };
+                pick.offer(model, plan, mv, &[(r1, t1), (r2, t2)], scratch);
+            }
+            if e1.fits_before[j] {
+                let w = y[j];
+                let t1 = e1.head[i] + c1(x[i], w) + dn[w] + e1.back[j];
+                let t2 = e2.back_head[i + 1] + c2(v, u) + dn[u] + e2.own_tail[j + 1];
+                let mv = Move::Cross {
+                    r1,
+                    i,
+                    r2,
+                    j,
+                    rev: true,
+                };
+                pick.offer(model, plan, mv, &[(r1, t1), (r2, t2)], scratch);
+            }
+        }
+    }
+    scratch.ends = [e1, e2];
 }
 
 /// The O(1) route times and the counted violations agree with a

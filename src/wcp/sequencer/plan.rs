@@ -68,6 +68,17 @@ pub(super) enum Move {
     },
     /// Reverse positions `i..=j` of robot `r`.
     Reverse { r: usize, i: usize, j: usize },
+    /// Exchange the ends of two routes (2-opt*): `r1` keeps its nodes up to position `i`
+    /// and goes on with those of `r2` after position `j`, and `r2` the other way round;
+    /// `rev`: `r1` goes on with `r2`'s nodes up to `j` backwards, and `r2` does `r1`'s
+    /// nodes after `i` backwards, then its own after `j`.
+    Cross {
+        r1: usize,
+        i: usize,
+        r2: usize,
+        j: usize,
+        rev: bool,
+    },
 }
 
 /// Reusable buffers, so that evaluating a move allocates nothing.
@@ -79,9 +90,34 @@ pub(super) struct Scratch {
     ids: Vec<usize>,
     /// The granular search's candidate places (robot, gap), each once.
     pub gaps: Vec<(usize, usize)>,
+    /// A 2-opt* pass's sums, per robot of the pair (see `offers::offer_crosses`).
+    pub ends: [Ends; 2],
     /// `[robot][gap]`: the stamp of the last call that listed that place.
     pub seen: Vec<Vec<u32>>,
     pub stamp: u32,
+}
+
+/// One robot's times over the pieces of its own route and of the other's that a 2-opt*
+/// exchange joins (see `offers::offer_crosses`), each on the robot's own arc costs. "Stay
+/// included" counts the task's duration at the node named.
+#[derive(Default)]
+pub(super) struct Ends {
+    /// `[p]`: from home along its own route to its node `p`, stay included.
+    pub(super) head: Vec<f64>,
+    /// `[p]`: from its own node `p` along its route home, stay excluded.
+    pub(super) own_tail: Vec<f64>,
+    /// `[p]`: from the other's node `p` along the other's route home, stay excluded.
+    pub(super) tail: Vec<f64>,
+    /// `[p]`: from the other's node `p` back along the other's route to its start, stay
+    /// excluded.
+    pub(super) back: Vec<f64>,
+    /// `[p]`: from the other's end back along the other's route to its node `p`, stay
+    /// included.
+    pub(super) back_head: Vec<f64>,
+    /// `[p]`: the robot may do every task of the other's route from its node `p` on.
+    pub(super) fits_after: Vec<bool>,
+    /// `[p]`: the robot may do every task of the other's route up to its node `p`.
+    pub(super) fits_before: Vec<bool>,
 }
 
 /// Marks a task that no route holds.
@@ -289,6 +325,23 @@ impl Plan {
                 a[i..=j].reverse();
                 (r, None)
             }
+            Move::Cross { r1, i, r2, j, rev } => {
+                let (x, y) = (&self.routes[r1], &self.routes[r2]);
+                a.clear();
+                a.extend_from_slice(&x[..=i]);
+                b.clear();
+                if rev {
+                    a.extend(y[..=j].iter().rev());
+                    b.extend(x[i + 1..].iter().rev());
+                } else {
+                    a.extend_from_slice(&y[j + 1..]);
+                    b.extend_from_slice(&y[..=j]);
+                    b.extend_from_slice(&x[i + 1..]);
+                    return (r1, Some(r2));
+                }
+                b.extend_from_slice(&y[j + 1..]);
+                (r1, Some(r2))
+            }
         }
     }
 
@@ -330,6 +383,9 @@ impl Plan {
                 at(r2, j + 1),
             ],
             Move::Reverse { r, i, j } => vec![at(r, i - 1), at(r, i), at(r, j), at(r, j + 1)],
+            Move::Cross { r1, i, r2, j, .. } => {
+                vec![at(r1, i), at(r1, i + 1), at(r2, j), at(r2, j + 1)]
+            }
         }
     }
 
