@@ -159,10 +159,14 @@ pub fn sequence_with(
 }
 
 /// The settings of a sequencing that repairs a plan (a re-sequencing, a choice of
-/// configurations): one epoch of the local search, whatever effort the blind plan gets.
+/// configurations): one epoch of the local search, whatever effort the blind plan gets, and
+/// no route-end exchanges ([`SequencerOptions::route_exchanges`]).
+///
+/// [`SequencerOptions::route_exchanges`]: crate::wcp::sequencer::SequencerOptions::route_exchanges
 pub(crate) fn repairing(opts: &SolveOptions) -> SolveOptions {
     let mut opts = opts.clone();
     opts.sequencer.effort = 1;
+    opts.sequencer.route_exchanges = false;
     opts
 }
 

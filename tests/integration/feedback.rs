@@ -366,17 +366,31 @@ fn the_search_is_the_same_on_one_two_and_four_threads() {
 
 /// On a cell of 100 to 199 tasks a re-sequencing is a local repair (`search/pending.rs`,
 /// `LOCAL_RESEQUENCE_FROM_TASKS`): `workpiece-3` (10 robots, 100 tasks) reaches the
-/// benchmarks' 21.50 within 114 schedules (a ceiling on the work, not a pin).
+/// benchmarks' 21.78 within 114 schedules (ceilings, not pins). It reached 21.50 before the
+/// sequencer exchanged route ends: the blind plan is another one now, and a repair, which
+/// makes no such exchanges (`SequencerOptions::route_exchanges`), finds 21.78 from it.
 #[test]
 fn a_resequencing_on_a_hundred_task_cell_is_a_local_repair() {
     let solved = solve(&conflict_cell(ConflictKind::Workpiece, 3));
     assert!(solved.collision_free);
     assert!(
-        (solved.schedule.makespan - 21.50).abs() < 5e-3,
+        solved.schedule.makespan <= 21.779,
         "{}",
         solved.schedule.makespan
     );
     assert!(solved.nodes <= 114, "{} schedules checked", solved.nodes);
+}
+
+/// A repair makes no route-end exchanges (`SequencerOptions::route_exchanges`): they move
+/// whole route ends between robots, whose schedules must then be checked again.
+/// `workpiece-4` (12 robots, 120 tasks) is certified at its collision-blind makespan within
+/// 600 schedules (443 today; 1,628 with exchanges in repairs).
+#[test]
+fn a_repair_keeps_the_route_ends() {
+    let solved = solve(&conflict_cell(ConflictKind::Workpiece, 4));
+    assert!(solved.collision_free);
+    assert!(solved.schedule.makespan <= solved.blind_makespan * (1.0 + 1e-9));
+    assert!(solved.nodes <= 600, "{} schedules checked", solved.nodes);
 }
 
 /// `patience` ends the search once it stops paying, and only ends it sooner: the answer is

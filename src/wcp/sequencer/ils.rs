@@ -177,7 +177,7 @@ fn descend(
 ) {
     let deadline = opts.deadline;
     if model.neighbours.is_none() {
-        return local_search(model, plan, scratch);
+        return local_search(model, plan, scratch, opts.route_exchanges);
     }
     let mut active = match touched {
         None => Active::all(model),

@@ -9,14 +9,17 @@ use super::model::Model;
 use super::offers::{offer_crosses, offer_reverse, offer_swap, Cut, Pick};
 use super::plan::{Plan, Scratch};
 
-/// Improves `plan` until no move of any neighbourhood does.
-pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch) {
+/// Improves `plan` until no move of any neighbourhood does; route ends are exchanged only
+/// when `exchanges`.
+pub(super) fn local_search(model: &Model, plan: &mut Plan, scratch: &mut Scratch, exchanges: bool) {
     loop {
         let mut improved = false;
         improved |= shift_pass(model, plan, scratch, 1);
         improved |= swap_pass(model, plan, scratch);
         improved |= reverse_pass(model, plan, scratch);
-        improved |= cross_pass(model, plan, scratch);
+        if exchanges {
+            improved |= cross_pass(model, plan, scratch);
+        }
         improved |= shift_pass(model, plan, scratch, 2);
         improved |= shift_pass(model, plan, scratch, 3);
         if !improved {
@@ -186,7 +189,7 @@ mod tests {
             insert_all(&model, &mut plan, &order, &mut scratch);
             plan.assert_consistent(&model);
             for _ in 0..5 {
-                local_search(&model, &mut plan, &mut scratch);
+                local_search(&model, &mut plan, &mut scratch, true);
                 plan.assert_consistent(&model);
                 ruin_recreate(&model, &mut plan, &mut rng, &mut scratch);
                 plan.assert_consistent(&model);
