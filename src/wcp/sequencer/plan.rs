@@ -331,15 +331,16 @@ impl Plan {
                 a.extend_from_slice(&x[..=i]);
                 b.clear();
                 if rev {
+                    // r1: its head, then r2's head backwards home; r2: r1's tail backwards
+                    // from home, then its own tail.
                     a.extend(y[..=j].iter().rev());
                     b.extend(x[i + 1..].iter().rev());
+                    b.extend_from_slice(&y[j + 1..]);
                 } else {
                     a.extend_from_slice(&y[j + 1..]);
                     b.extend_from_slice(&y[..=j]);
                     b.extend_from_slice(&x[i + 1..]);
-                    return (r1, Some(r2));
                 }
-                b.extend_from_slice(&y[j + 1..]);
                 (r1, Some(r2))
             }
         }
