@@ -96,12 +96,26 @@ impl Browser {
     /// Resizes the window so that the page's viewport is `width` × `height` (the window's
     /// frame, even headless, takes some of the window); the viewport's size then.
     pub fn viewport(&self, width: u32, height: u32) -> [f64; 2] {
-        let inner = || -> [f64; 2] {
+        let read = || -> [f64; 2] {
             let v = self.run("return [window.innerWidth, window.innerHeight];", json!([]));
             serde_json::from_value(v).expect("the viewport's size")
         };
+        // A resize may land after the command returns (a loaded machine): the size once two
+        // reads 50 ms apart agree.
+        let inner = || -> [f64; 2] {
+            let mut last = read();
+            for _ in 0..40 {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+                let now = read();
+                if now == last {
+                    break;
+                }
+                last = now;
+            }
+            last
+        };
         let (mut w, mut h) = (f64::from(width), f64::from(height));
-        for _ in 0..3 {
+        for _ in 0..5 {
             self.command(
                 "POST",
                 "window/rect",

@@ -64,8 +64,10 @@ pub struct SequencerOptions {
     /// the best one wins, the first one on ties.
     pub restarts: usize,
     /// Most perturbation rounds (ruin and recreate, then local search) per
-    /// restart; a restart stops earlier after `iterations / 4` rounds in a
-    /// row that do not improve its best plan.
+    /// restart; a restart stops earlier after `iterations / 5` rounds in a
+    /// row that do not improve its best plan in the first epoch without a `deadline`,
+    /// `iterations / 4` in later epochs, with a deadline or without `route_exchanges`
+    /// (a granular search: a quarter of its rounds).
     pub iterations: usize,
     /// Epochs of the local search: after the first, every restart's chain is kicked (a large
     /// ruin and recreate) and searched again, `effort - 1` times (1: one chain per restart).
@@ -87,7 +89,9 @@ pub struct SequencerOptions {
     /// plan under more conflicts is not expected to beat). Deterministic: every restart
     /// stops by its own plan alone.
     pub target: Option<f64>,
-    /// Whether the local search exchanges the ends of two routes (2-opt*). On by default;
+    /// Whether the local search exchanges the ends of two routes (2-opt*): at its local
+    /// optima only in the first epoch without a `deadline` (the default solve), in every
+    /// round otherwise. On by default;
     /// off for a repair (`wcp::sequence::repairing`: the re-sequencings of the search over
     /// remedies and of the greedy loop, the choice of arm configurations), which should
     /// stay near the routes it repairs: moving whole route ends spreads a repair over more
