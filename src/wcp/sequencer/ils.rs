@@ -40,7 +40,7 @@ pub(super) fn search(
     on_best: &(dyn Fn(f64) + Sync),
 ) -> Plan {
     // The first epoch exchanges route ends at local optima only: the default solve (one
-    // epoch) is as fast as without exchanges. Later epochs, which an effort buys, and a
+    // epoch) is about as fast as before exchanges existed. Later epochs, which an effort buys, and a
     // search to a deadline exchange them in every round, which finds deeper optima
     // sooner (eil76 with two robots under a 1 s limit: 280.85, against 286.02 with the
     // first epoch at optima only). Effort n + 1 still repeats effort n and goes on.
@@ -184,13 +184,14 @@ const GRANULAR_RECORD_SLACK: f64 = 0.005;
 
 /// A chain of the first epoch (exchanges at local optima) stops after `rounds /
 /// PATIENCE_SHARE` rounds in a row without a better plan. On the twelve cells of
-/// `../shared/mtsp/`, a fifth took a fifth less CPU than a quarter, with the same makespans
-/// but eil76-m3's (196.70 instead of 195.72); a sixth lost 2 % on eil76-m2. Longer
-/// searches are what `effort` and `deadline` are for.
+/// `../shared/mtsp/`, a fifth took about a sixth less CPU than a quarter, with the same
+/// makespans but eil76-m3's (196.70 instead of 195.72); a sixth lost 2 % on eil76-m2.
+/// Longer searches are what `effort` and `deadline` are for.
 const PATIENCE_SHARE: usize = 5;
-/// The same for other chains: a repair's (no exchanges; a fifth made the search over
-/// remedies of conflict cell `workpiece-4` check 1,365 schedules instead of 443) and later
-/// epochs' (exchanges in every round).
+/// The same for other chains: a repair's (no exchanges; with a fifth for repairs too, and
+/// exchanges in every round of the blind plan's descents, the search over remedies of
+/// conflict cell `workpiece-4` checked 1,365 schedules instead of 443) and later epochs'
+/// (exchanges in every round).
 const PLAIN_PATIENCE_SHARE: usize = 4;
 /// The same for a granular search, whose rounds are many and small.
 const GRANULAR_PATIENCE_SHARE: usize = 4;

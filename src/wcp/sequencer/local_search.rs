@@ -212,8 +212,9 @@ mod tests {
             let order: Vec<usize> = (0..tasks).collect();
             insert_all(&model, &mut plan, &order, &mut scratch);
             plan.assert_consistent(&model);
-            for _ in 0..5 {
-                local_search(&model, &mut plan, &mut scratch, Exchanges::EveryRound);
+            for round in 0..6 {
+                let exchanges = [Exchanges::EveryRound, Exchanges::AtOptima][round % 2];
+                local_search(&model, &mut plan, &mut scratch, exchanges);
                 plan.assert_consistent(&model);
                 ruin_recreate(&model, &mut plan, &mut rng, &mut scratch);
                 plan.assert_consistent(&model);
