@@ -113,6 +113,7 @@ pub(super) fn reconfigured(
         robot: x,
         schedule: Arc::new(schedule),
         remedy: remedy(view.routes, prepared, r),
+        last_resort: false,
     };
     Some((child, next))
 }

@@ -34,6 +34,9 @@ pub(crate) struct Child {
     pub robot: usize,
     pub schedule: Arc<RobotSchedule>,
     pub remedy: Remedy,
+    /// A way out offered only when the usual ones fail (a detour round the other side of a
+    /// loop): the search makes it a discrepancy, checked only when taken.
+    pub last_resort: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -152,6 +155,7 @@ pub(super) fn child(
         robot: x,
         schedule: Arc::new(s),
         remedy,
+        last_resort: false,
     }
 }
 

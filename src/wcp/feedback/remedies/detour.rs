@@ -2,8 +2,8 @@
 //! or the region it sweeps over the conflict window if it moves.
 
 use super::context::{
-    body_radius, child, detoured, earliest, leg_nodes, leg_window, occupancy, pieces_of, Child,
-    Ctx, Side, View,
+    apart, body_radius, child, detoured, earliest, leg_nodes, leg_window, occupancy, pieces_of,
+    Child, Ctx, Side, View,
 };
 use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::Piece;
@@ -44,24 +44,44 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         node_pose(ctx.cell, side.x, to),
     );
     let current = pieces_of(ctx, view, side.x, m)?;
-    let tried = windows.into_iter().filter_map(|(w0, w1)| {
+    let around = |(w0, w1): (f64, f64)| {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
         let motion = ctx.moves.between(side.x, a, b, &region)?;
-        if matches!(current.as_slice(), [Piece::Go { motion: old, .. }] if old.path == motion.path)
-        {
+        let same =
+            |p: &Piece| matches!(p, Piece::Go { motion: old, .. } if old.path == motion.path);
+        if current.len() == 1 && same(&current[0]) {
             return None;
         }
         let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?;
         Some((s.end, (motion, new, s)))
-    });
+    };
+    // When neither window works because the other robot's sweep covers the detouring
+    // robot's own start, the region swept up to the contact only: on a loop, the way round
+    // the other side (robots that meet head-on in a ring corridor). A last resort
+    // (`Child::last_resort`), which the search checks only when it gets to it: tried as a
+    // window like the others, it cost a doorway cell its schedule within the budget.
+    let (w0, w1) = windows[0];
+    let before = (w0, side.t.clamp(w0, w1));
+    let hemmed = || {
+        let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
+        !apart(&[(ctx.cell.rigid(side.x).pieces(), a)], &region, 0.0)
+    };
     // On ties the first window tried.
-    let (motion, new, s) = earliest(tried)?;
+    let (found, last_resort) = match earliest(windows.into_iter().filter_map(around)) {
+        Some(found) => (found, false),
+        None => (hemmed().then(|| around(before)).flatten()?.1, true),
+    };
+    let (motion, new, s) = found;
     let kind = RemedyKind::Detour {
         around: side.y,
         path: motion.path.clone(),
     };
     let remedy = Remedy::on(side.x, m, (from, to), kind);
-    Some(child(view, side.x, m, new, s, remedy))
+    let made = child(view, side.x, m, new, s, remedy);
+    Some(Child {
+        last_resort,
+        ..made
+    })
 }
 
 #[cfg(test)]

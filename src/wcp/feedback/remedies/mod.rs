@@ -6,7 +6,8 @@
 //!   on (the move is cut there into two rest-to-rest moves);
 //! * **slow**: run the leg's motions slower (time scaling keeps every limit);
 //! * **detour**: re-plan the leg with the other robot as an obstacle: its pose if it
-//!   stands, the region it sweeps during the conflict if it moves;
+//!   stands, the region it sweeps during the conflict if it moves (as a last resort, up to
+//!   the contact only: the way round the other side of a loop);
 //! * **step aside**: a robot standing in the other's way (waiting at a node, or home for
 //!   good) goes to a free parking pose nearby, waits there and goes on (or back home); a
 //!   robot on its way leaves its start node for a parking pose near it instead, and lets

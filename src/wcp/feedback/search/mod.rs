@@ -7,9 +7,10 @@
 //! each remedy of `remedies/` (each the least of its kind that clears the pair), or the
 //! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
 //! child is costed lazily: it waits in the queue, and the sequencer runs only when it comes
-//! out. So is a reconfiguration (when asked): an arm of the pair in another configuration
-//! at a task (`reconfigure.rs`); the node then carries the preparation of its
-//! configurations, which its own children inherit.
+//! out. A remedy's last resort (a detour round the other side of a loop) is made at once
+//! but checked only when it comes out. A reconfiguration (when asked) is costed lazily too:
+//! an arm of the pair in another configuration at a task (`reconfigure.rs`); the node then
+//! carries the preparation of its configurations, which its own children inherit.
 //!
 //! The order is that of limited discrepancy search (Harvey & Ginsberg, 1995), with the
 //! makespan as the heuristic: a node's children are ranked by makespan (then by how late
@@ -84,6 +85,9 @@ enum Pending {
     Resequence(Conflict),
     /// The parent with an arm reconfigured.
     Reconfigure(Reconfig),
+    /// A last resort of the remedies ([`Child::last_resort`]), made but checked only when
+    /// taken: a discrepancy that spends none of the budget unless the search gets to it.
+    Check,
 }
 
 /// The checker's verdict on a node.
@@ -229,6 +233,13 @@ impl Search<'_> {
                 }
                 Some(Pending::Reconfigure(r)) => {
                     self.cost_reconfiguration(id, r, progress);
+                    continue;
+                }
+                Some(Pending::Check) => {
+                    self.check_all(&[id], progress);
+                    if self.collision(id).is_some() {
+                        self.enqueue(id);
+                    }
                     continue;
                 }
                 None => {}
@@ -484,6 +495,7 @@ impl Search<'_> {
             let mut timed = robots.clone();
             timed[child.robot] = child.schedule;
             let makespan = timed.iter().map(|s| s.end).fold(0.0, f64::max);
+            let last_resort = child.last_resort;
             let child = self.add(Node {
                 routes: routes.clone(),
                 conflicts: conflicts.clone(),
@@ -499,7 +511,15 @@ impl Search<'_> {
                 outcome: None,
                 prepared: own.clone(),
             });
-            if self.worth(child) {
+            if !self.worth(child) {
+                continue;
+            }
+            if last_resort {
+                let node = &mut self.nodes[child];
+                node.pending = Some(Pending::Check);
+                (node.discrepancies, node.deviated_at) = (discrepancies + 1, depth);
+                self.enqueue(child);
+            } else {
                 made.push(child);
             }
         }
