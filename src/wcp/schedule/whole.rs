@@ -165,11 +165,9 @@ impl Schedule {
     fn bodies(&self, cell: &Cell, r: usize) -> Vec<Body> {
         let name = &cell.robots[r].name;
         match &cell.robots[r].kind {
-            RobotKind::Rigid(robot) => vec![robot.body(
-                name,
-                Trajectory::new(self.robots[r].samples.clone())
-                    .expect("schedules sample increasing times"),
-            )],
+            RobotKind::Rigid(robot) => {
+                vec![robot.body(name, Trajectory::trusted(self.robots[r].samples.clone()))]
+            }
             RobotKind::Arm(arm) => arm.bodies(name, self.robots[r].joints.clone()),
         }
     }
