@@ -63,7 +63,8 @@ pub struct FeedbackArgs {
     #[arg(long, default_value_t = 0)]
     search_patience: u64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
-    /// detour, step-aside, reconfigure (an arm's; default: all but reconfigure).
+    /// detour (with it make-way: a robot in another's way leaves ahead of it, the other
+    /// waits), step-aside, reconfigure (an arm's; default: all but reconfigure).
     #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "reconfigure"])]
     remedies: Option<Vec<String>>,
 }

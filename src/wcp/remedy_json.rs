@@ -24,6 +24,23 @@ pub enum ChangeJson {
     StepAside(StepAsideJson),
     /// An arm in another configuration at a task.
     Reconfigure(ReconfigureJson),
+    /// A robot in another's way leaves ahead of it; the other waits.
+    MakeWay(MakeWayJson),
+}
+
+/// A robot standing in another's way leaves by another way, ahead of it; the other waits.
+#[derive(Serialize)]
+pub struct MakeWayJson {
+    /// The robot that makes way.
+    pub robot: String,
+    /// The move it leaves by.
+    pub on: String,
+    /// The robot it makes way for.
+    pub ahead_of: String,
+    /// Its new path of G.
+    pub path: Vec<[f64; 2]>,
+    /// How long the other robot waits before its move.
+    pub wait: f64,
 }
 
 /// An arm in another configuration at a task.
@@ -113,6 +130,7 @@ pub fn remedy_name(r: &Remedy) -> &'static str {
         RemedyKind::Slow { .. } => "slow",
         RemedyKind::Detour { .. } => "detour",
         RemedyKind::StepAside { .. } => "step-aside",
+        RemedyKind::MakeWay { .. } => "make-way",
         RemedyKind::Reconfigure { .. } => "reconfigure",
     }
 }
@@ -168,6 +186,17 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             park: [park.pos.x, park.pos.y, park.theta],
             duration: *duration,
         }),
+        RemedyKind::MakeWay {
+            ahead_of,
+            path,
+            wait,
+        } => ChangeJson::MakeWay(MakeWayJson {
+            robot,
+            on,
+            ahead_of: cell.robots[*ahead_of].name.clone(),
+            path: path.iter().map(|p| [p.x, p.y]).collect(),
+            wait: *wait,
+        }),
         RemedyKind::Reconfigure { task, joints } => ChangeJson::Reconfigure(ReconfigureJson {
             robot,
             at: cell.tasks[*task].name.clone(),
@@ -219,6 +248,16 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
             park.pos.x,
             park.pos.y,
             seconds(*duration)
+        ),
+        RemedyKind::MakeWay {
+            ahead_of,
+            path,
+            wait,
+        } => format!(
+            "{who} makes way for {} on its {on} ({} waypoints), which waits {}",
+            cell.robots[*ahead_of].name,
+            path.len(),
+            seconds(*wait)
         ),
         RemedyKind::Reconfigure { task, joints } => {
             let angles: Vec<String> = joints.iter().map(|a| format!("{a:.3}")).collect();

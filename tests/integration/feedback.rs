@@ -559,14 +559,14 @@ fn the_doorways_a_weaker_search_loses_are_solved() {
 /// never a hang (each ends within the default budgets) and never a schedule that collides.
 #[test]
 fn a_ring_is_solved_or_its_blockers_named() {
-    let mut refused = 0;
-    for k in 0..6 {
+    let mut refused = Vec::new();
+    for k in 0..9 {
         let cell = conflict_cell(ConflictKind::Ring, k);
         let solved = solve(&cell);
         match &solved.failure {
             None => assert_certified_within_limits(&cell, &solved),
             Some(failure) => {
-                refused += 1;
+                refused.push(k);
                 assert!(!solved.collision_free);
                 assert!(
                     failure.contains(" block each other at (")
@@ -583,10 +583,22 @@ fn a_ring_is_solved_or_its_blockers_named() {
             }
         }
     }
-    // Rings of three robots need no remedy; of four and five, those where one robot going
-    // round the other side lets the others follow are solved (see the next test). The rest
-    // need a convoy, which the remedies cannot make yet: ring-4 of these six.
-    assert!(refused <= 1, "{refused} of 6 refused");
+    // Rings of three robots need no remedy; of four and five, one robot going round the
+    // other side, or making way ahead of another, lets the others follow (the next two
+    // tests). Rings 6 and 8 (six and seven robots) need a convoy of the whole ring, which
+    // the remedies cannot make yet.
+    assert!(refused.len() <= 2, "refused: {refused:?}");
+}
+
+/// A robot at work on a ring corridor one robot wide, in the way of another coming along
+/// it: the one behind cannot pass, the one ahead cannot come back. It makes way: leaves by
+/// its way home round the other side, ahead of the other, which waits (`remedies/
+/// make_way.rs`, two robots changed at once). `ring-4` (5 robots) is certified at 17.160,
+/// 9.4 % over its blind 15.683; without that remedy every other was tried (741 schedules)
+/// and the cell was refused.
+#[test]
+fn a_robot_at_work_makes_way_round_a_ring() {
+    assert_ring_solved(4, 17.160, |k| matches!(k, RemedyKind::MakeWay { .. }));
 }
 
 /// Robots that meet head-on in a ring corridor: one goes round the other side (a detour
@@ -596,15 +608,16 @@ fn a_ring_is_solved_or_its_blockers_named() {
 /// that detour no remedy cleared its collisions (9 schedules checked).
 #[test]
 fn a_ring_is_solved_the_other_way_round() {
-    let solved = solve(&conflict_cell(ConflictKind::Ring, 2));
+    assert_ring_solved(2, 17.028, |k| matches!(k, RemedyKind::Detour { .. }));
+}
+
+/// Ring `k` of seed 1 certified at `makespan`, with a remedy on the branch of the answer that
+/// `used` recognises.
+fn assert_ring_solved(k: u64, makespan: f64, used: fn(&RemedyKind) -> bool) {
+    let solved = solve(&conflict_cell(ConflictKind::Ring, k));
     assert!(solved.collision_free, "{:?}", solved.failure);
-    assert!(
-        (solved.schedule.makespan - 17.028).abs() < 1e-3,
-        "{}",
-        solved.schedule.makespan
-    );
-    let detoured = (solved.iterations.iter())
-        .filter_map(|it| it.remedy.as_ref())
-        .any(|r| matches!(r.kind, RemedyKind::Detour { .. }));
-    assert!(detoured);
+    let got = solved.schedule.makespan;
+    assert!((got - makespan).abs() < 1e-3, "{got}");
+    let on_branch = solved.iterations.iter().filter_map(|it| it.remedy.as_ref());
+    assert!(on_branch.map(|r| &r.kind).any(used));
 }

@@ -78,6 +78,16 @@ pub enum RemedyKind {
         /// How long it waits there.
         duration: f64,
     },
+    /// The robot, standing in another's way, leaves by another way, ahead of the other,
+    /// which waits (a remedy of the two at once).
+    MakeWay {
+        /// The robot it makes way for.
+        ahead_of: usize,
+        /// Its new path of G.
+        path: Vec<Vec2>,
+        /// How long the other waits before its move.
+        wait: f64,
+    },
 }
 
 impl Remedy {

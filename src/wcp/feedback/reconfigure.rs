@@ -110,8 +110,7 @@ pub(super) fn reconfigured(
     let schedule = RobotSchedule::build(cell, x, &view.routes[x], &legs[x], &next.moves).ok()?;
     let child = Child {
         legs,
-        robot: x,
-        schedule: Arc::new(schedule),
+        changed: vec![(x, Arc::new(schedule))],
         remedy: remedy(view.routes, prepared, r),
         last_resort: false,
     };

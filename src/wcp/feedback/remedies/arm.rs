@@ -299,7 +299,9 @@ mod tests {
     /// its task (on its way home it crosses B again: the next round's business).
     fn clear_until_done(test: &TestCell, child: &Child) -> bool {
         let mut robots = test.view().robots.to_vec();
-        robots[child.robot] = child.schedule.clone();
+        for (r, s) in &child.changed {
+            robots[*r] = s.clone();
+        }
         let done = leg_window(&robots[0], 0).1;
         let schedule = Schedule::of(robots);
         let report = check(&schedule.scene(&test.cell), &Default::default());
@@ -335,7 +337,7 @@ mod tests {
         assert!(matches!(child.remedy.kind, RemedyKind::StepAside { .. }));
         assert!(clear_until_done(&test, &child));
         // Home again at the end, having moved.
-        let b = &child.schedule;
+        let b = &child.changed[0].1;
         let home = &test.cell.robots[1].as_arm().unwrap().home;
         assert_eq!(&b.joints.last().unwrap().q, home);
         assert!(b.joints.iter().any(|s| (s.q[0] - home[0]).abs() > 0.4));

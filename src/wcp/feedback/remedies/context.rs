@@ -27,15 +27,17 @@ pub(crate) struct View<'a> {
     pub robots: &'a [Arc<RobotSchedule>],
 }
 
-/// A changed schedule: one robot's legs and timed plan replaced.
+/// A changed schedule: one robot's legs and timed plan replaced (two robots' for a robot
+/// that makes way for another).
 #[derive(Clone)]
 pub(crate) struct Child {
     pub legs: Legs,
-    pub robot: usize,
-    pub schedule: Arc<RobotSchedule>,
+    /// The robots changed, with their new timed plans.
+    pub changed: Vec<(usize, Arc<RobotSchedule>)>,
     pub remedy: Remedy,
-    /// A way out offered only when the usual ones fail (a detour round the other side of a
-    /// loop): the search makes it a discrepancy, checked only when taken.
+    /// A way out offered only when the usual ones fail, or one that would widen every
+    /// search (a detour round the other side of a loop, a robot making way ahead of
+    /// another): the search makes it a discrepancy, checked only when taken.
     pub last_resort: bool,
 }
 
@@ -152,8 +154,7 @@ pub(super) fn child(
 ) -> Child {
     Child {
         legs: with_leg(view.legs, x, m, new),
-        robot: x,
-        schedule: Arc::new(s),
+        changed: vec![(x, Arc::new(s))],
         remedy,
         last_resort: false,
     }

@@ -11,7 +11,10 @@
 //! * **step aside**: a robot standing in the other's way (waiting at a node, or home for
 //!   good) goes to a free parking pose nearby, waits there and goes on (or back home); a
 //!   robot on its way leaves its start node for a parking pose near it instead, and lets
-//!   the other pass.
+//!   the other pass;
+//! * **make way**, of both robots at once: the one standing in the other's way (at work, or
+//!   waiting at a node) leaves ahead of it, round where it comes from, and the other waits
+//!   (a last resort, like the detour's).
 //!
 //! Every candidate is judged by [`clears`] on the window of the changed leg; the search
 //! decides among the survivors by makespan. Motions are planned by the planner and
@@ -25,6 +28,7 @@ use rayon::prelude::*;
 mod arm;
 mod context;
 mod detour;
+mod make_way;
 mod pause;
 mod step_aside;
 
@@ -32,12 +36,13 @@ use context::{child, horizons, least_clearing, leg_nodes, leg_window, Side};
 pub(super) use context::{Child, Ctx, View};
 
 use detour::detour;
+use make_way::make_way;
 use pause::{pause, slow};
 use step_aside::step_aside;
 
 /// The candidates for collision `c`: for each robot of the pair, each remedy allowed that
 /// separates it from the other, in a fixed order (first robot first; wait, pause, slow,
-/// detour, step aside). Evaluated in parallel, collected in that order.
+/// detour, step aside, make way). Evaluated in parallel, collected in that order.
 pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
     let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
         return Vec::new();
@@ -47,7 +52,7 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
     let set = ctx.opts.search.remedies;
     type Job = fn(&Ctx, &View, &Side) -> Option<Child>;
     // An arm pauses, detours and steps aside in joint space.
-    let kinds = |x: usize| -> [(bool, Job); 5] {
+    let kinds = |x: usize| -> [(bool, Job); 6] {
         let arm = ctx.cell.robots[x].as_arm().is_some();
         [
             (set.wait, wait),
@@ -58,6 +63,8 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
                 set.step_aside,
                 if arm { arm::step_aside } else { step_aside },
             ),
+            // Two robots at once: a detour of the one that leaves, a wait of the other.
+            (set.detour, make_way),
         ]
     };
     let t = c.time;

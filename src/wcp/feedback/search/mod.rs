@@ -7,10 +7,11 @@
 //! each remedy of `remedies/` (each the least of its kind that clears the pair), or the
 //! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
 //! child is costed lazily: it waits in the queue, and the sequencer runs only when it comes
-//! out. A remedy's last resort (a detour round the other side of a loop) is made at once
-//! but checked only when it comes out. A reconfiguration (when asked) is costed lazily too:
-//! an arm of the pair in another configuration at a task (`reconfigure.rs`); the node then
-//! carries the preparation of its configurations, which its own children inherit.
+//! out. A remedy's last resort (a detour round the other side of a loop, a robot making way
+//! ahead of another) is made at once but checked only when it comes out. A reconfiguration
+//! (when asked) is costed lazily too: an arm of the pair in another configuration at a task
+//! (`reconfigure.rs`); the node then carries the preparation of its configurations, which
+//! its own children inherit.
 //!
 //! The order is that of limited discrepancy search (Harvey & Ginsberg, 1995), with the
 //! makespan as the heuristic: a node's children are ranked by makespan (then by how late
@@ -447,7 +448,9 @@ impl Search<'_> {
             Some((_, children)) => (children.iter())
                 .map(|child| {
                     let mut legs = view.legs.clone();
-                    legs[child.robot] = child.legs[child.robot].clone();
+                    for (r, _) in &child.changed {
+                        legs[*r] = child.legs[*r].clone();
+                    }
                     Child {
                         legs,
                         ..child.clone()
@@ -493,7 +496,9 @@ impl Search<'_> {
                 continue;
             }
             let mut timed = robots.clone();
-            timed[child.robot] = child.schedule;
+            for (r, s) in child.changed {
+                timed[r] = s;
+            }
             let makespan = timed.iter().map(|s| s.end).fold(0.0, f64::max);
             let last_resort = child.last_resort;
             let child = self.add(Node {

@@ -146,7 +146,9 @@ impl Search<'_> {
         }
         let node = &mut self.nodes[id];
         node.legs = child.legs;
-        node.robots[child.robot] = child.schedule;
+        for (r, s) in child.changed {
+            node.robots[r] = s;
+        }
         node.makespan = node.robots.iter().map(|s| s.end).fold(0.0, f64::max);
         node.prepared = Some(prepared);
         if self.worth(id) {
