@@ -4,8 +4,9 @@
 //!
 //! Neither robot alone can do this when the one standing would otherwise leave towards the
 //! other, as on a ring corridor one robot wide: the robot behind cannot pass, and the one
-//! ahead cannot come back. Its next leg is planned around the other's sweep up to the
-//! contact (where the other comes from), so on a loop it goes on round the other side.
+//! ahead cannot come back. Its next leg is planned around a short stretch of the other's
+//! sweep just short of the contact (where the other comes from), so on a loop it goes on
+//! round the other side.
 
 use super::context::{
     body_radius, horizons, least_clearing, leg_nodes, leg_window, occupancy, pieces_of, Child, Ctx,
@@ -59,8 +60,7 @@ pub(super) fn make_way(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         let since = (until - MAKE_WAY_REACH * tau).max(start);
         let region = occupancy(ctx, view, y, since, until);
         ctx.moves.between(x, a, b, &region)
-    });
-    let motion = motion?;
+    })?;
     let current = pieces_of(ctx, view, x, m)?;
     if matches!(&current[..], [Piece::Go { motion: old, .. }] if old.path == motion.path) {
         return None;
