@@ -319,6 +319,24 @@ pub(super) fn by_parking(
     }
 }
 
+/// Leg `old` (its wait kept) made by the one motion `motion`, as planned.
+pub(super) fn by_motion(old: &Leg, motion: &Arc<PlannedMove>) -> Leg {
+    let go = Piece::Go {
+        motion: motion.clone(),
+        scale: 1.0,
+    };
+    Leg {
+        pieces: Some(vec![go].into()),
+        ..old.clone()
+    }
+}
+
+/// Whether `pieces` are already the one motion along `motion`'s path: a new plan that
+/// changes nothing.
+pub(super) fn same_path(pieces: &[Piece], motion: &PlannedMove) -> bool {
+    matches!(pieces, [Piece::Go { motion: old, .. }] if old.path == motion.path)
+}
+
 /// Leg `m` of `side.x` as the one motion `motion` (a detour's leg), and the schedule it
 /// makes, when that clears `side.y` from `t0` (the leg's start) to the window's end.
 pub(super) fn detoured(
@@ -328,14 +346,7 @@ pub(super) fn detoured(
     (m, t0): (usize, f64),
     motion: &Arc<PlannedMove>,
 ) -> Option<(Leg, RobotSchedule)> {
-    let go = Piece::Go {
-        motion: motion.clone(),
-        scale: 1.0,
-    };
-    let new = Leg {
-        pieces: Some(vec![go].into()),
-        ..leg(view.legs, side.x, m).clone()
-    };
+    let new = by_motion(leg(view.legs, side.x, m), motion);
     let s = ctx.rebuild(view, side.x, m, &new)?;
     let window = (t0, side.window_end(&s, m));
     let ys = &view.robots[side.y];

@@ -3,10 +3,9 @@
 
 use super::context::{
     apart, body_radius, child, detoured, earliest, leg_nodes, leg_window, occupancy, pieces_of,
-    Child, Ctx, Side, View,
+    same_path, Child, Ctx, Side, View,
 };
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::Piece;
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
 
@@ -47,9 +46,7 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let around = |(w0, w1): (f64, f64)| {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
         let motion = ctx.moves.between(side.x, a, b, &region)?;
-        let same =
-            |p: &Piece| matches!(p, Piece::Go { motion: old, .. } if old.path == motion.path);
-        if current.len() == 1 && same(&current[0]) {
+        if same_path(&current, &motion) {
             return None;
         }
         let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?;

@@ -9,11 +9,11 @@
 //! round the other side.
 
 use super::context::{
-    body_radius, horizons, least_clearing, leg_nodes, leg_window, occupancy, pieces_of, Child, Ctx,
-    Side, View,
+    body_radius, by_motion, horizons, least_clearing, leg_nodes, leg_window, occupancy, pieces_of,
+    same_path, Child, Ctx, Side, View,
 };
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::{leg, with_leg, Leg, Piece};
+use crate::wcp::legs::{leg, with_leg, Leg};
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
 use std::sync::Arc;
@@ -62,19 +62,10 @@ pub(super) fn make_way(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         ctx.moves.between(x, a, b, &region)
     })?;
     let current = pieces_of(ctx, view, x, m)?;
-    if matches!(&current[..], [Piece::Go { motion: old, .. }] if old.path == motion.path) {
+    if same_path(&current, &motion) {
         return None;
     }
-    let ahead = Leg {
-        pieces: Some(
-            vec![Piece::Go {
-                motion: motion.clone(),
-                scale: 1.0,
-            }]
-            .into(),
-        ),
-        ..leg(view.legs, x, m).clone()
-    };
+    let ahead = by_motion(leg(view.legs, x, m), &motion);
     let xs = Arc::new(ctx.rebuild(view, x, m, &ahead)?);
     // Then y waits the least that clears x as it now goes.
     let legs = with_leg(view.legs, x, m, ahead);
