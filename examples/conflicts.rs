@@ -2,6 +2,7 @@
 //!
 //! ```sh
 //! cargo run --release --example conflicts -- [--seed S] [--count K] [--family NAME]... [--greedy]
+//!     [--remedies LIST]
 //! ```
 //!
 //! For every family of `workcell generate --kind conflict` (or those named) and cells
@@ -11,13 +12,14 @@
 //! marked *), the makespan found and its overhead, the rounds along the answer's branch and
 //! the schedules checked, and the wall time of the solve (planning included). The last
 //! rows give each family's mean overhead over the cells solved and, with `--greedy`, over the
-//! cells both feedbacks solve.
+//! cells both feedbacks solve. `--remedies` names the search's remedies as `workcell solve
+//! --remedies` does (default: its default set).
 
 use std::path::Path;
 use std::time::Instant;
 use workcell::cell::parse_cell;
 use workcell::generate::{generate_conflict_cell, ConflictKind};
-use workcell::wcp::{self, Feedback, SolveOptions};
+use workcell::wcp::{self, Feedback, Remedies, SearchOptions, SolveOptions};
 
 struct Row {
     family: &'static str,
@@ -57,6 +59,9 @@ fn main() {
         named
     };
     let greedy = args.iter().any(|a| a == "--greedy");
+    let remedies = value("--remedies").map_or_else(Remedies::default, |list| {
+        Remedies::of_names(list.split(',')).expect("--remedies LIST")
+    });
     let feedbacks: Vec<Feedback> = if greedy {
         vec![Feedback::Search, Feedback::Greedy]
     } else {
@@ -79,9 +84,14 @@ fn main() {
                 runs: Vec::new(),
             };
             for &feedback in &feedbacks {
+                let defaults = SolveOptions::default();
                 let opts = SolveOptions {
                     feedback,
-                    ..SolveOptions::default()
+                    search: SearchOptions {
+                        remedies,
+                        ..defaults.search
+                    },
+                    ..defaults
                 };
                 let clock = Instant::now();
                 let prepared = wcp::prepare(&cell, &opts, &()).expect("a valid cell");

@@ -153,6 +153,10 @@ pub struct Remedies {
     pub detour: bool,
     /// Step aside to a parking pose.
     pub step_aside: bool,
+    /// Time two robots' moves together in their coordination diagram (off by default:
+    /// on the conflict families it widens the search more than it pays; see
+    /// docs/benchmarks.md).
+    pub tune: bool,
     /// An arm takes another of its configurations at the task of a collision (off by
     /// default: up to six more children per collision with an arm widen the search more
     /// than they pay; see docs/benchmarks.md).
@@ -168,17 +172,19 @@ impl Remedies {
         slow: true,
         detour: true,
         step_aside: true,
+        tune: true,
         reconfigure: true,
     };
 
     /// The names of `--remedies`, in this order.
-    pub const NAMES: [&'static str; 7] = [
+    pub const NAMES: [&'static str; 8] = [
         "resequence",
         "wait",
         "pause",
         "slow",
         "detour",
         "step-aside",
+        "tune",
         "reconfigure",
     ];
 
@@ -200,6 +206,7 @@ impl Remedies {
             slow: false,
             detour: false,
             step_aside: false,
+            tune: false,
             reconfigure: false,
         };
         for name in names {
@@ -210,6 +217,7 @@ impl Remedies {
                 "slow" => &mut set.slow,
                 "detour" => &mut set.detour,
                 "step-aside" => &mut set.step_aside,
+                "tune" => &mut set.tune,
                 "reconfigure" => &mut set.reconfigure,
                 other => {
                     return Err(format!(
@@ -225,9 +233,10 @@ impl Remedies {
 }
 
 impl Default for Remedies {
-    /// Every remedy but `reconfigure`.
+    /// Every remedy but `tune` and `reconfigure`.
     fn default() -> Self {
         Remedies {
+            tune: false,
             reconfigure: false,
             ..Remedies::ALL
         }

@@ -26,6 +26,34 @@ pub enum ChangeJson {
     Reconfigure(ReconfigureJson),
     /// A robot in another's way leaves ahead of it; the other waits.
     MakeWay(MakeWayJson),
+    /// Two robots' moves timed together.
+    Tune(TuneJson),
+}
+
+/// Two robots' moves timed together: both keep their paths, each holds where listed.
+#[derive(Serialize)]
+pub struct TuneJson {
+    /// The first robot.
+    pub robot: String,
+    /// Its move.
+    pub on: String,
+    /// The other robot.
+    pub with: String,
+    /// The other's move.
+    pub with_on: String,
+    /// Every stop of the two, robot by robot, in time order.
+    pub holds: Vec<TunedHoldJson>,
+}
+
+/// A stop of a robot on a move timed with another's.
+#[derive(Serialize)]
+pub struct TunedHoldJson {
+    /// The robot.
+    pub robot: String,
+    /// Where G stops.
+    pub at: [f64; 2],
+    /// How long.
+    pub duration: f64,
 }
 
 /// A robot standing in another's way leaves by another way, ahead of it; the other waits.
@@ -131,6 +159,7 @@ pub fn remedy_name(r: &Remedy) -> &'static str {
         RemedyKind::Detour { .. } => "detour",
         RemedyKind::StepAside { .. } => "step-aside",
         RemedyKind::MakeWay { .. } => "make-way",
+        RemedyKind::Tune { .. } => "tune",
         RemedyKind::Reconfigure { .. } => "reconfigure",
     }
 }
@@ -197,6 +226,19 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             path: path.iter().map(|p| [p.x, p.y]).collect(),
             wait: *wait,
         }),
+        RemedyKind::Tune { with, holds } => ChangeJson::Tune(TuneJson {
+            robot,
+            on,
+            with: cell.robots[with.robot].name.clone(),
+            with_on: move_name(cell, with.robot, with.nodes),
+            holds: (holds.iter())
+                .map(|h| TunedHoldJson {
+                    robot: cell.robots[h.robot].name.clone(),
+                    at: [h.at.x, h.at.y],
+                    duration: h.duration,
+                })
+                .collect(),
+        }),
         RemedyKind::Reconfigure { task, joints } => ChangeJson::Reconfigure(ReconfigureJson {
             robot,
             at: cell.tasks[*task].name.clone(),
@@ -259,6 +301,20 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
             path.len(),
             seconds(*wait)
         ),
+        RemedyKind::Tune { with, holds } => {
+            let stops: Vec<String> = (holds.iter())
+                .map(|h| {
+                    let (r, d) = (&cell.robots[h.robot].name, seconds(h.duration));
+                    format!("{r} holds {d} at ({:.3}, {:.3})", h.at.x, h.at.y)
+                })
+                .collect();
+            format!(
+                "{who} and {} time their moves together ({on}; {}): {}",
+                cell.robots[with.robot].name,
+                move_name(cell, with.robot, with.nodes),
+                stops.join(", ")
+            )
+        }
         RemedyKind::Reconfigure { task, joints } => {
             let angles: Vec<String> = joints.iter().map(|a| format!("{a:.3}")).collect();
             let task = &cell.tasks[*task].name;

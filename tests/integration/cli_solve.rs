@@ -253,6 +253,57 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
     }
 }
 
+/// `--remedies ...,tune` times two robots' moves together: the round says so under
+/// `"tune"` (both robots, both moves, every hold), the text in a sentence, and `evaluate`
+/// replays the held moves to the same makespan. Without it the ring is refused (exit 1).
+#[test]
+fn two_moves_timed_together_are_reported_and_replayed() {
+    let dir = temp_dir_made("solve", "tune").join("cells");
+    let out = workcell(&[
+        "generate",
+        "--kind",
+        "ring",
+        "--seed",
+        "1",
+        "--count",
+        "7",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let cell = dir.join("ring-1-6-cell.json");
+    let cell = cell.to_str().unwrap();
+    let refused = workcell(&["solve", cell]);
+    assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
+    let remedies = "resequence,wait,pause,slow,detour,step-aside,tune";
+    let solved = workcell(&["solve", cell, "--remedies", remedies, "--json"]);
+    assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
+    let result = json(&solved);
+    let rounds = result["feedback"].as_array().unwrap();
+    let tuned = (rounds.iter())
+        .find(|r| r["remedy"] == "tune")
+        .expect("a round of two moves timed together");
+    let change = &tuned["tune"];
+    for key in ["robot", "on", "with", "with_on"] {
+        assert!(change[key].is_string(), "{change}");
+    }
+    assert_ne!(change["robot"], change["with"]);
+    let holds = change["holds"].as_array().unwrap();
+    assert!(!holds.is_empty());
+    for hold in holds {
+        assert!(hold["duration"].as_f64().unwrap() > 0.0);
+        assert_eq!(hold["at"].as_array().unwrap().len(), 2);
+        assert!(hold["robot"] == change["robot"] || hold["robot"] == change["with"]);
+    }
+    let words = workcell(&["solve", cell, "--remedies", remedies]);
+    assert!(text(&words.stdout).contains("time their moves together"));
+    let document = temp_dir_made("solve", "tune").join("result.json");
+    std::fs::write(&document, &solved.stdout).unwrap();
+    let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    assert_eq!(json(&out)["makespan"], result["makespan"]);
+}
+
 #[test]
 fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
     let dir = temp_dir_made("solve", "legs").join("cells");

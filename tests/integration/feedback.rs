@@ -25,9 +25,11 @@ fn only(names: &[&str]) -> SolveOptions {
     opts
 }
 
-/// Every remedy but the one named.
+/// Every remedy but the one named and those on request only (`tune`).
 fn all_but(name: &str) -> SolveOptions {
-    let names: Vec<&str> = Remedies::NAMES.into_iter().filter(|n| *n != name).collect();
+    let names: Vec<&str> = (Remedies::NAMES.into_iter())
+        .filter(|n| *n != name && *n != "tune")
+        .collect();
     only(&names)
 }
 
@@ -553,6 +555,18 @@ fn the_doorways_a_weaker_search_loses_are_solved() {
     }
 }
 
+/// `tune` is a last resort, checked only when the search takes it: offered with the other
+/// children, its extra schedule in every expansion cost `doorway-4` (eight robots) its
+/// schedule within the 5,000-node budget; as a last resort the cell is solved as without it.
+#[test]
+fn tuning_as_a_last_resort_keeps_the_doorways_schedule() {
+    let mut opts = SolveOptions::default();
+    opts.search.remedies.tune = true;
+    let solved = solve_with(&conflict_cell(ConflictKind::Doorway, 4), &opts);
+    assert!(solved.collision_free, "{:?}", solved.failure);
+    assert!(solved.schedule.makespan <= 42.125 + 1e-3);
+}
+
 /// A ring corridor one robot wide: robots never pass each other. Each cell of `generate
 /// --kind ring` ends with a certified schedule, or with a failure that names the two robots
 /// blocking each other between the centre block and a wall and says what was exhausted;
@@ -611,11 +625,39 @@ fn a_ring_is_solved_the_other_way_round() {
     assert_ring_solved(2, 17.028, |k| matches!(k, RemedyKind::Detour { .. }));
 }
 
+/// Six robots on a ring, where pairs must yield in turn: with `tune` (on request), a pair's
+/// coordination diagram times two moves together, one robot holding at a waypoint of its
+/// move while the other passes (`remedies/tune.rs`), and `ring-6` is certified at 21.611
+/// (30 % over its blind 16.612); with the default remedies it is refused after 335
+/// schedules, naming the two robots that block each other.
+#[test]
+fn a_ring_of_six_is_solved_with_two_moves_timed_together() {
+    let cell = conflict_cell(ConflictKind::Ring, 6);
+    let without = solve(&cell);
+    assert!(!without.collision_free);
+    assert!(without.failure.unwrap().contains(" block each other at ("));
+    let mut opts = SolveOptions::default();
+    opts.search.remedies.tune = true;
+    assert_ring_solved_with(6, &opts, 21.611, |k| matches!(k, RemedyKind::Tune { .. }));
+}
+
 /// Ring `k` of seed 1 certified at `makespan`, with a remedy on the branch of the answer that
 /// `used` recognises.
 fn assert_ring_solved(k: u64, makespan: f64, used: fn(&RemedyKind) -> bool) {
-    let solved = solve(&conflict_cell(ConflictKind::Ring, k));
+    assert_ring_solved_with(k, &SolveOptions::default(), makespan, used)
+}
+
+/// [`assert_ring_solved`] with the options `opts`.
+fn assert_ring_solved_with(
+    k: u64,
+    opts: &SolveOptions,
+    makespan: f64,
+    used: fn(&RemedyKind) -> bool,
+) {
+    let cell = conflict_cell(ConflictKind::Ring, k);
+    let solved = solve_with(&cell, opts);
     assert!(solved.collision_free, "{:?}", solved.failure);
+    assert_certified_within_limits(&cell, &solved);
     let got = solved.schedule.makespan;
     assert!((got - makespan).abs() < 1e-3, "{got}");
     let on_branch = solved.iterations.iter().filter_map(|it| it.remedy.as_ref());

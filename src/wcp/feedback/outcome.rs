@@ -88,6 +88,25 @@ pub enum RemedyKind {
         /// How long the other waits before its move.
         wait: f64,
     },
+    /// Two robots' moves timed together (velocity tuning in their coordination diagram):
+    /// both keep their paths; each holds where its [`TunedHold`]s say.
+    Tune {
+        /// The other robot's move timed with this one.
+        with: RemedyLeg,
+        /// Where each robot of the two holds and how long, robot by robot, in time order.
+        holds: Vec<TunedHold>,
+    },
+}
+
+/// A stop of a robot on a move timed with another's ([`RemedyKind::Tune`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TunedHold {
+    /// The robot.
+    pub robot: usize,
+    /// Where G stops (its start node for a longer wait there).
+    pub at: Vec2,
+    /// How long.
+    pub duration: f64,
 }
 
 impl Remedy {

@@ -14,7 +14,9 @@
 //!   the other pass;
 //! * **make way**, of both robots at once: the one standing in the other's way (at work, or
 //!   waiting at a node) leaves ahead of it, round where it comes from, and the other waits
-//!   (a last resort, like the detour's).
+//!   (a last resort, like the detour's);
+//! * **tune**, of both robots at once: both keep their paths, and their coordination
+//!   diagram says where each holds and how long (on request: `Remedies::tune`).
 //!
 //! Every candidate is judged by [`clears`] on the window of the changed leg; the search
 //! decides among the survivors by makespan. Motions are planned by the planner and
@@ -27,10 +29,12 @@ use rayon::prelude::*;
 
 mod arm;
 mod context;
+mod coordination;
 mod detour;
 mod make_way;
 mod pause;
 mod step_aside;
+mod tune;
 
 use context::{child, horizons, least_clearing, leg_nodes, leg_window, Side};
 pub(super) use context::{Child, Ctx, View};
@@ -39,10 +43,12 @@ use detour::detour;
 use make_way::make_way;
 use pause::{pause, slow};
 use step_aside::step_aside;
+use tune::tune;
 
 /// The candidates for collision `c`: for each robot of the pair, each remedy allowed that
 /// separates it from the other, in a fixed order (first robot first; wait, pause, slow,
-/// detour, step aside, make way). Evaluated in parallel, collected in that order.
+/// detour, step aside, make way), then the two tuned together. Evaluated in parallel,
+/// collected in that order.
 pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
     let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
         return Vec::new();
@@ -84,7 +90,7 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
             t,
         },
     ];
-    let jobs: Vec<(&Side, Job)> = sides
+    let mut jobs: Vec<(&Side, Job)> = sides
         .iter()
         .flat_map(|side| {
             (kinds(side.x).into_iter())
@@ -92,6 +98,10 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
                 .map(move |k| (side, k.1))
         })
         .collect();
+    // Both robots at once, in one diagram: once per collision.
+    if set.tune {
+        jobs.push((&sides[0], tune));
+    }
     jobs.par_iter()
         .map(|(side, job)| job(ctx, view, side))
         .collect::<Vec<_>>()

@@ -52,7 +52,10 @@ fn arc_length_at(path: &[Vec2], p: Vec2) -> f64 {
 }
 
 /// `primitives` cut at arc length `s` of their chained paths.
-fn split_chain(primitives: &[Primitive], s: f64) -> Option<(Vec<Primitive>, Vec<Primitive>)> {
+pub(super) fn split_chain(
+    primitives: &[Primitive],
+    s: f64,
+) -> Option<(Vec<Primitive>, Vec<Primitive>)> {
     let mut walked = 0.0;
     for (k, p) in primitives.iter().enumerate() {
         let len = p.length();
