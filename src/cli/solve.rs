@@ -64,8 +64,8 @@ pub struct FeedbackArgs {
     search_patience: u64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour (with it make-way: a robot in another's way leaves ahead of it, the other
-    /// waits), step-aside, tune (two robots' moves timed together), reconfigure (an arm's;
-    /// default: all but tune and reconfigure).
+    /// waits), step-aside, tune (two robots' moves timed together, for a pair that collides
+    /// again), reconfigure (an arm's; default: all but reconfigure).
     #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "tune", "reconfigure"])]
     remedies: Option<Vec<String>>,
 }

@@ -153,9 +153,8 @@ pub struct Remedies {
     pub detour: bool,
     /// Step aside to a parking pose.
     pub step_aside: bool,
-    /// Time two robots' moves together in their coordination diagram (off by default:
-    /// on the conflict families it widens the search more than it pays; see
-    /// docs/benchmarks.md).
+    /// Time two robots' moves together in their coordination diagram, for a pair that
+    /// collides again on the search's branch.
     pub tune: bool,
     /// An arm takes another of its configurations at the task of a collision (off by
     /// default: up to six more children per collision with an arm widen the search more
@@ -233,10 +232,9 @@ impl Remedies {
 }
 
 impl Default for Remedies {
-    /// Every remedy but `tune` and `reconfigure`.
+    /// Every remedy but `reconfigure`.
     fn default() -> Self {
         Remedies {
-            tune: false,
             reconfigure: false,
             ..Remedies::ALL
         }

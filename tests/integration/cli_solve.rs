@@ -253,9 +253,10 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
     }
 }
 
-/// `--remedies ...,tune` times two robots' moves together: the round says so under
-/// `"tune"` (both robots, both moves, every hold), the text in a sentence, and `evaluate`
-/// replays the held moves to the same makespan. Without it the ring is refused (exit 1).
+/// `tune` times two robots' moves together: the round says so under `"tune"` (both robots,
+/// both moves, every hold), the text in a sentence, and `evaluate` replays the held moves
+/// to the same makespan. Without it (`--remedies` naming the others) the ring is refused
+/// (exit 1).
 #[test]
 fn two_moves_timed_together_are_reported_and_replayed() {
     let dir = temp_dir_made("solve", "tune").join("cells");
@@ -273,10 +274,10 @@ fn two_moves_timed_together_are_reported_and_replayed() {
     assert_eq!(out.status.code(), Some(0));
     let cell = dir.join("ring-1-6-cell.json");
     let cell = cell.to_str().unwrap();
-    let refused = workcell(&["solve", cell]);
+    let others = "resequence,wait,pause,slow,detour,step-aside";
+    let refused = workcell(&["solve", cell, "--remedies", others]);
     assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
-    let remedies = "resequence,wait,pause,slow,detour,step-aside,tune";
-    let solved = workcell(&["solve", cell, "--remedies", remedies, "--json"]);
+    let solved = workcell(&["solve", cell, "--json"]);
     assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
     let result = json(&solved);
     let rounds = result["feedback"].as_array().unwrap();
@@ -295,7 +296,7 @@ fn two_moves_timed_together_are_reported_and_replayed() {
         assert_eq!(hold["at"].as_array().unwrap().len(), 2);
         assert!(hold["robot"] == change["robot"] || hold["robot"] == change["with"]);
     }
-    let words = workcell(&["solve", cell, "--remedies", remedies]);
+    let words = workcell(&["solve", cell]);
     assert!(text(&words.stdout).contains("time their moves together"));
     let document = temp_dir_made("solve", "tune").join("result.json");
     std::fs::write(&document, &solved.stdout).unwrap();

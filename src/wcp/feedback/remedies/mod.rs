@@ -15,8 +15,9 @@
 //! * **make way**, of both robots at once: the one standing in the other's way (at work, or
 //!   waiting at a node) leaves ahead of it, round where it comes from, and the other waits
 //!   (a last resort, like the detour's);
-//! * **tune**, of both robots at once: both keep their paths, and their coordination
-//!   diagram says where each holds and how long (on request: `Remedies::tune`).
+//! * **tune**, of both robots at once, for a pair that collided before on the search's
+//!   branch: both keep their paths, and their coordination diagram says where each holds
+//!   and how long (a last resort too).
 //!
 //! Every candidate is judged by [`clears`] on the window of the changed leg; the search
 //! decides among the survivors by makespan. Motions are planned by the planner and
@@ -49,7 +50,7 @@ use tune::tune;
 /// separates it from the other, in a fixed order (first robot first; wait, pause, slow,
 /// detour, step aside, make way), then the two tuned together. Evaluated in parallel,
 /// collected in that order.
-pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
+pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> Vec<Child> {
     let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
         return Vec::new();
     };
@@ -98,8 +99,9 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision) -> Vec<Child> {
                 .map(move |k| (side, k.1))
         })
         .collect();
-    // Both robots at once, in one diagram: once per collision.
-    if set.tune {
+    // Both robots at once, in one diagram, once per collision: for a pair that met before
+    // on the branch, whose single changes did not keep it apart.
+    if set.tune && again {
         jobs.push((&sides[0], tune));
     }
     jobs.par_iter()

@@ -132,12 +132,12 @@ const SAME_MAKESPAN: f64 = 1e-9;
 type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize);
 
 /// A collision as the remedies see it: the addresses of the two robots' schedules, the
-/// preparation's, and the contact's time. The remedies read only the two robots' routes,
-/// legs and schedules (one schedule object stands for one route and legs), so siblings that
-/// changed a third robot and then meet the same collision get the same children. Nodes
-/// share their unchanged robots' schedules, so this is common: a quarter of the expansions
-/// of a 4-arm cell of 40 tasks.
-type Met = (usize, usize, usize, u64);
+/// preparation's, the contact's time, and whether the pair met before on the branch. The
+/// remedies read only the two robots' routes, legs and schedules (one schedule object
+/// stands for one route and legs), so siblings that changed a third robot and then meet the
+/// same collision get the same children. Nodes share their unchanged robots' schedules, so
+/// this is common: a quarter of the expansions of a 4-arm cell of 40 tasks.
+type Met = (usize, usize, usize, u64, bool);
 
 /// The remedies' children for a [`Met`] collision, with the two schedules it names (held, so
 /// that their addresses stay theirs).
@@ -416,6 +416,27 @@ impl Search<'_> {
         }
     }
 
+    /// Whether the two robots of collision `c` of node `id` collided in an ancestor of it
+    /// too: a pair whose remedies did not keep it apart.
+    fn met_before(&self, id: usize, c: &Collision) -> bool {
+        let pair = |c: &Collision| {
+            let (a, b) = (c.robots.0, c.robots.1?);
+            Some((a.min(b), a.max(b)))
+        };
+        let Some(this) = pair(c) else {
+            return false;
+        };
+        let mut up = self.nodes[id].parent;
+        while let Some(p) = up {
+            let theirs = self.collision(p).and_then(pair);
+            if theirs == Some(this) {
+                return true;
+            }
+            up = self.nodes[p].parent;
+        }
+        false
+    }
+
     /// Makes, checks and queues the children of colliding node `id`.
     fn expand(&mut self, id: usize, progress: &dyn Progress) {
         let clock = Instant::now();
@@ -433,11 +454,12 @@ impl Search<'_> {
         let own = node.prepared.clone();
         let prepared = self.prepared_of(id);
         let ctx = Ctx::new(self.cell, &prepared.moves, self.opts);
+        let again = self.met_before(id, &c);
         let met = c.robots.1.map(|b| {
             let (a, b) = (&view.robots[c.robots.0], &view.robots[b]);
             let at = |s: &Arc<RobotSchedule>| Arc::as_ptr(s) as usize;
             let prepared_at = prepared as *const Prepared as usize;
-            let key = (at(a), at(b), prepared_at, c.time.to_bits());
+            let key = (at(a), at(b), prepared_at, c.time.to_bits(), again);
             (key, [a.clone(), b.clone()])
         });
         let met = met.filter(|_| self.opts.search.remember);
@@ -458,7 +480,7 @@ impl Search<'_> {
                 })
                 .collect(),
             None => {
-                let children = candidates(&ctx, &view, &c);
+                let children = candidates(&ctx, &view, &c, again);
                 learnt = met.map(|(key, pair)| (key, (pair, children.clone())));
                 children
             }
