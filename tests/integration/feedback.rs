@@ -536,6 +536,20 @@ fn a_failed_search_names_the_budget_it_exhausted() {
     }
 }
 
+/// The search's budget is a most: a search that spends it has checked exactly that many
+/// schedules, not a batch of children more (the junction needs more than 50).
+#[test]
+fn the_search_checks_no_more_schedules_than_its_budget() {
+    let cell = conflict_cell(ConflictKind::Junction, 0);
+    for budget in [1, 7, 50] {
+        let mut opts = SolveOptions::default();
+        opts.search.max_nodes = budget;
+        let solved = solve_with(&cell, &opts);
+        assert!(!solved.collision_free);
+        assert_eq!(solved.nodes, budget);
+    }
+}
+
 /// Doorways that a worse search leaves without a schedule (children ranked by the earlier
 /// collision instead of the later: 3, 4, 7 and 8 unsolved): each is solved, no longer than
 /// when this test was written.

@@ -550,6 +550,8 @@ impl Search<'_> {
                 made.push(child);
             }
         }
+        // No more than the budget: children beyond it are left unchecked (the search ends).
+        made.truncate(self.opts.search.max_nodes.saturating_sub(self.checked));
         self.check_all(&made, progress);
         self.rank_and_queue(made, depth);
         // A reconfiguration departs from the configurations chosen with the routes: a
