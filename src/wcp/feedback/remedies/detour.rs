@@ -54,11 +54,14 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     };
     // When neither window works because the other robot's sweep covers the detouring
     // robot's own start, the region swept up to the contact only: on a loop, the way round
-    // the other side (robots that meet head-on in a ring corridor). A last resort
+    // the other side (robots that meet head-on in a ring corridor). Failing that, because
+    // the other's sweep also covers the detouring robot's goal (it leaves from beside it),
+    // its pose at the contact alone, which still closes the way it was hit. A last resort
     // (`Child::last_resort`), which the search checks only when it gets to it: tried as a
     // window like the others, it cost a doorway cell its schedule within the budget.
     let (w0, w1) = windows[0];
     let before = (w0, side.t.clamp(w0, w1));
+    let contact = (before.1, before.1);
     let hemmed = || {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
         !apart(&[(ctx.cell.rigid(side.x).pieces(), a)], &region, 0.0)
@@ -66,7 +69,10 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     // On ties the first window tried.
     let (found, last_resort) = match earliest(windows.into_iter().filter_map(around)) {
         Some(found) => (found, false),
-        None => (hemmed().then(|| around(before)).flatten()?.1, true),
+        None => {
+            let other_side = hemmed().then(|| around(before).or_else(|| around(contact)));
+            (other_side.flatten()?.1, true)
+        }
     };
     let (motion, new, s) = found;
     let kind = RemedyKind::Detour {
