@@ -2,9 +2,10 @@
 //! the cell and plays its schedule: play, pause, speed, a time slider, the Gantt chart with a
 //! cursor, and what each robot is doing.
 
+use super::canvas::Frame;
 use super::gantt::gantt_svg;
 use super::model::Model;
-use super::picture::{cell_svg, Frame};
+use super::picture::cell_svg;
 use serde::Serialize;
 use svg::node::element::Group;
 

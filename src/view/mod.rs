@@ -5,13 +5,17 @@
 //! made from the result as its JSON carries it ([`crate::wcp::report::ResultJson`],
 //! [`crate::collision::CheckReport`]) and the scene of the trajectories drawn.
 
+mod canvas;
 mod chart;
 mod gantt;
 mod html;
 mod labels;
+mod legend;
 mod model;
 mod picture;
+mod rings;
 
+pub use canvas::Frame;
 pub use chart::chart;
 pub use gantt::{gantt, gantt_svg, TimeAxis};
 pub use html::html;
@@ -19,4 +23,4 @@ pub use labels::{text_width, Placer};
 pub use model::{
     kind_colour, pose_at, ArmView, Bar, Mark, Model, RobotView, TaskView, COLOURS, KINDS,
 };
-pub use picture::{cell_svg, picture, placed, Frame};
+pub use picture::{cell_svg, picture, placed};
