@@ -65,8 +65,9 @@ pub struct FeedbackArgs {
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour (with it make-way: a robot in another's way leaves ahead of it, the other
     /// waits), step-aside, tune (two robots' moves timed together, for a pair that collides
-    /// again), reconfigure (an arm's; default: all but reconfigure).
-    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "tune", "reconfigure"])]
+    /// again), convoy (every robot of a closed corridor round it together), reconfigure (an
+    /// arm's; default: all but reconfigure).
+    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "tune", "convoy", "reconfigure"])]
     remedies: Option<Vec<String>>,
 }
 

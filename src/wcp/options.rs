@@ -156,6 +156,9 @@ pub struct Remedies {
     /// Time two robots' moves together in their coordination diagram, for a pair that
     /// collides again on the search's branch.
     pub tune: bool,
+    /// Every robot of a closed corridor goes round it together, when a pair meets on it
+    /// again or no other remedy separates them.
+    pub convoy: bool,
     /// An arm takes another of its configurations at the task of a collision (off by
     /// default: up to six more children per collision with an arm widen the search more
     /// than they pay; see docs/benchmarks.md).
@@ -172,11 +175,12 @@ impl Remedies {
         detour: true,
         step_aside: true,
         tune: true,
+        convoy: true,
         reconfigure: true,
     };
 
     /// The names of `--remedies`, in this order.
-    pub const NAMES: [&'static str; 8] = [
+    pub const NAMES: [&'static str; 9] = [
         "resequence",
         "wait",
         "pause",
@@ -184,6 +188,7 @@ impl Remedies {
         "detour",
         "step-aside",
         "tune",
+        "convoy",
         "reconfigure",
     ];
 
@@ -206,6 +211,7 @@ impl Remedies {
             detour: false,
             step_aside: false,
             tune: false,
+            convoy: false,
             reconfigure: false,
         };
         for name in names {
@@ -217,6 +223,7 @@ impl Remedies {
                 "detour" => &mut set.detour,
                 "step-aside" => &mut set.step_aside,
                 "tune" => &mut set.tune,
+                "convoy" => &mut set.convoy,
                 "reconfigure" => &mut set.reconfigure,
                 other => {
                     return Err(format!(

@@ -28,6 +28,25 @@ pub enum ChangeJson {
     MakeWay(MakeWayJson),
     /// Two robots' moves timed together.
     Tune(TuneJson),
+    /// Every robot of a loop round it together.
+    Convoy(ConvoyJson),
+}
+
+/// Every robot of a closed corridor round it together, the same way.
+#[derive(Serialize)]
+pub struct ConvoyJson {
+    /// The robot whose collision it answers.
+    pub robot: String,
+    /// Its move there.
+    pub on: String,
+    /// The robots that go round.
+    pub robots: Vec<String>,
+    /// `counter-clockwise` or `clockwise`, seen from above.
+    pub direction: &'static str,
+    /// Whole laps of the loop.
+    pub laps: usize,
+    /// The loop, a closed path of G.
+    pub path: Vec<[f64; 2]>,
 }
 
 /// Two robots' moves timed together: both keep their paths, each holds where listed.
@@ -160,7 +179,22 @@ pub fn remedy_name(r: &Remedy) -> &'static str {
         RemedyKind::StepAside { .. } => "step-aside",
         RemedyKind::MakeWay { .. } => "make-way",
         RemedyKind::Tune { .. } => "tune",
+        RemedyKind::Convoy { .. } => "convoy",
         RemedyKind::Reconfigure { .. } => "reconfigure",
+    }
+}
+
+fn names(cell: &Cell, robots: &[usize]) -> Vec<String> {
+    robots
+        .iter()
+        .map(|&r| cell.robots[r].name.clone())
+        .collect()
+}
+
+fn direction(counter_clockwise: bool) -> &'static str {
+    match counter_clockwise {
+        true => "counter-clockwise",
+        false => "clockwise",
     }
 }
 
@@ -239,6 +273,19 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
                 })
                 .collect(),
         }),
+        RemedyKind::Convoy {
+            robots,
+            counter_clockwise,
+            laps,
+            loop_path,
+        } => ChangeJson::Convoy(ConvoyJson {
+            robot,
+            on,
+            robots: names(cell, robots),
+            direction: direction(*counter_clockwise),
+            laps: *laps,
+            path: loop_path.iter().map(|p| [p.x, p.y]).collect(),
+        }),
         RemedyKind::Reconfigure { task, joints } => ChangeJson::Reconfigure(ReconfigureJson {
             robot,
             at: cell.tasks[*task].name.clone(),
@@ -313,6 +360,22 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
                 cell.robots[with.robot].name,
                 move_name(cell, with.robot, with.nodes),
                 stops.join(", ")
+            )
+        }
+        RemedyKind::Convoy {
+            robots,
+            counter_clockwise,
+            laps,
+            ..
+        } => {
+            let laps = match laps {
+                1 => "one lap".to_owned(),
+                n => format!("{n} laps"),
+            };
+            format!(
+                "{} go round the loop together, {} ({laps}), each working at its tasks while the others hold (for {who} on its {on})",
+                names(cell, robots).join(", "),
+                direction(*counter_clockwise)
             )
         }
         RemedyKind::Reconfigure { task, joints } => {

@@ -305,6 +305,58 @@ fn two_moves_timed_together_are_reported_and_replayed() {
     assert_eq!(json(&out)["makespan"], result["makespan"]);
 }
 
+/// A convoy sends every robot of a ring round it together: the round says so under
+/// `"convoy"` (the robots, the way round, the laps, the loop), the text in a sentence, and
+/// `evaluate` replays the convoy's moves and holds to the same makespan. Without it the
+/// ring is refused (exit 1).
+#[test]
+fn a_convoy_is_reported_and_replayed() {
+    let dir = temp_dir_made("solve", "convoy").join("cells");
+    let out = workcell(&[
+        "generate",
+        "--kind",
+        "ring",
+        "--seed",
+        "1",
+        "--count",
+        "9",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let cell = dir.join("ring-1-8-cell.json");
+    let cell = cell.to_str().unwrap();
+    let others = "resequence,wait,pause,slow,detour,step-aside,tune";
+    let refused = workcell(&["solve", cell, "--remedies", others]);
+    assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
+    let solved = workcell(&["solve", cell, "--json"]);
+    assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
+    let result = json(&solved);
+    let rounds = result["feedback"].as_array().unwrap();
+    let round = (rounds.iter())
+        .find(|r| r["remedy"] == "convoy")
+        .expect("a round of a convoy");
+    let change = &round["convoy"];
+    assert!(
+        change["robot"].is_string() && change["on"].is_string(),
+        "{change}"
+    );
+    let robots: Vec<&str> = (change["robots"].as_array().unwrap().iter())
+        .map(|r| r.as_str().unwrap())
+        .collect();
+    assert_eq!(robots, ["R1", "R2", "R3", "R4", "R5", "R6", "R7"]);
+    assert!(["clockwise", "counter-clockwise"].contains(&change["direction"].as_str().unwrap()));
+    assert_eq!(change["laps"], 1);
+    assert!(change["path"].as_array().unwrap().len() >= 3);
+    let words = workcell(&["solve", cell]);
+    assert!(text(&words.stdout).contains("go round the loop together"));
+    let document = temp_dir_made("solve", "convoy").join("result.json");
+    std::fs::write(&document, &solved.stdout).unwrap();
+    let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    assert_eq!(json(&out)["makespan"], result["makespan"]);
+}
+
 #[test]
 fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
     let dir = temp_dir_made("solve", "legs").join("cells");

@@ -96,6 +96,19 @@ pub enum RemedyKind {
         /// Where each robot of the two holds and how long, robot by robot, in time order.
         holds: Vec<TunedHold>,
     },
+    /// Every robot of a closed corridor goes round it together, the same way, each
+    /// stopping at its tasks while the others hold, until all are home again (robots on a
+    /// loop one robot wide, which cannot pass each other).
+    Convoy {
+        /// The robots that go round, in cell order.
+        robots: Vec<usize>,
+        /// The way round, seen from above.
+        counter_clockwise: bool,
+        /// Whole laps of the loop.
+        laps: usize,
+        /// The loop, a closed path of G.
+        loop_path: Vec<Vec2>,
+    },
 }
 
 /// A stop of a robot on a move timed with another's ([`RemedyKind::Tune`]).

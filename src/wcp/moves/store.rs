@@ -466,6 +466,27 @@ impl MoveStore {
         self.lock_between().entry(key).or_insert(planned).clone()
     }
 
+    /// Robot `r` along `primitives` (rest to rest at every waypoint), timed as the planner
+    /// times them and certified clear of the fixtures; `None` if it is not clear. Once per
+    /// robot and primitives (kept with the moves between poses): a convoy moves the same
+    /// stretches of its loop at every collision it answers.
+    pub(crate) fn along(&self, r: usize, primitives: &[Primitive]) -> Option<Arc<PlannedMove>> {
+        // No robot index is u64::MAX: these keys never meet those of `between`.
+        let mut key = vec![u64::MAX, r as u64];
+        for p in primitives {
+            key.push(p.path.len() as u64);
+            key.extend(p.path.iter().flat_map(|v| [v.x.to_bits(), v.y.to_bits()]));
+            key.extend([p.theta.to_bits(), p.turn.to_bits()]);
+        }
+        if let Some(known) = self.lock_between().get(&key) {
+            return known.clone();
+        }
+        let timed = self.timed(r, primitives);
+        let clear = certify(&self.cell, r, &timed.samples, &self.obstacles).is_ok();
+        let made = clear.then_some(timed);
+        self.lock_between().entry(key).or_insert(made).clone()
+    }
+
     fn lock_between(&self) -> std::sync::MutexGuard<'_, Between> {
         self.between.lock().unwrap_or_else(|e| e.into_inner())
     }

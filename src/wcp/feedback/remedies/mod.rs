@@ -17,7 +17,10 @@
 //!   (a last resort, like the detour's);
 //! * **tune**, of both robots at once, for a pair that collided before on the search's
 //!   branch: both keep their paths, and their coordination diagram says where each holds
-//!   and how long (a last resort too).
+//!   and how long (a last resort too);
+//! * **convoy**, of every robot of a closed corridor at once, for a pair that collided
+//!   before or that nothing else separates: all go round it together, the same way (a last
+//!   resort).
 //!
 //! Every candidate is judged by [`clears`] on the window of the changed leg; the search
 //! decides among the survivors by makespan. Motions are planned by the planner and
@@ -30,6 +33,7 @@ use rayon::prelude::*;
 
 mod arm;
 mod context;
+mod convoy;
 mod coordination;
 mod detour;
 mod make_way;
@@ -40,6 +44,7 @@ mod tune;
 use context::{child, horizons, least_clearing, leg_nodes, leg_window, Side};
 pub(super) use context::{Child, Ctx, View};
 
+use convoy::convoy;
 use detour::detour;
 use make_way::make_way;
 use pause::{pause, slow};
@@ -104,12 +109,19 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> 
     if set.tune && again {
         jobs.push((&sides[0], tune));
     }
-    jobs.par_iter()
+    let mut children: Vec<Child> = jobs
+        .par_iter()
         .map(|(side, job)| job(ctx, view, side))
         .collect::<Vec<_>>()
         .into_iter()
         .flatten()
-        .collect()
+        .collect();
+    // Every robot of a loop at once: for a pair that met before, or that nothing else
+    // separates (robots on a ring corridor that cannot pass each other).
+    if set.convoy && (again || children.is_empty()) {
+        children.extend(sides.iter().find_map(|side| convoy(ctx, view, side)));
+    }
+    children
 }
 
 /// Wait longer at the leg's start node.
