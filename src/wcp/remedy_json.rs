@@ -45,6 +45,9 @@ pub struct ConvoyJson {
     pub direction: &'static str,
     /// Whole laps of the loop.
     pub laps: usize,
+    /// Each robot goes on as far as the one ahead leaves room (else all stop while any
+    /// works, as one rigid ring).
+    pub following: bool,
     /// The loop, a closed path of G.
     pub path: Vec<[f64; 2]>,
 }
@@ -277,6 +280,7 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             robots,
             counter_clockwise,
             laps,
+            following,
             loop_path,
         } => ChangeJson::Convoy(ConvoyJson {
             robot,
@@ -284,6 +288,7 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             robots: names(cell, robots),
             direction: direction(*counter_clockwise),
             laps: *laps,
+            following: *following,
             path: loop_path.iter().map(|p| [p.x, p.y]).collect(),
         }),
         RemedyKind::Reconfigure { task, joints } => ChangeJson::Reconfigure(ReconfigureJson {
@@ -366,14 +371,19 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
             robots,
             counter_clockwise,
             laps,
+            following,
             ..
         } => {
             let laps = match laps {
                 1 => "one lap".to_owned(),
                 n => format!("{n} laps"),
             };
+            let how = match following {
+                true => "each following the one ahead",
+                false => "each working at its tasks while the others hold",
+            };
             format!(
-                "{} go round the loop together, {} ({laps}), each working at its tasks while the others hold (for {who} on its {on})",
+                "{} go round the loop together, {} ({laps}), {how} (for {who} on its {on})",
                 names(cell, robots).join(", "),
                 direction(*counter_clockwise)
             )

@@ -346,10 +346,14 @@ fn a_convoy_is_reported_and_replayed() {
         .collect();
     assert_eq!(robots, ["R1", "R2", "R3", "R4", "R5", "R6", "R7"]);
     assert!(["clockwise", "counter-clockwise"].contains(&change["direction"].as_str().unwrap()));
-    assert_eq!(change["laps"], 1);
+    assert_eq!(
+        (&change["laps"], &change["following"]),
+        (&1.into(), &true.into())
+    );
     assert!(change["path"].as_array().unwrap().len() >= 3);
     let words = workcell(&["solve", cell]);
-    assert!(text(&words.stdout).contains("go round the loop together"));
+    assert!(text(&words.stdout).contains("go round the loop together, "));
+    assert!(text(&words.stdout).contains("each following the one ahead"));
     let document = temp_dir_made("solve", "convoy").join("result.json");
     std::fs::write(&document, &solved.stdout).unwrap();
     let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);

@@ -106,6 +106,9 @@ pub enum RemedyKind {
         counter_clockwise: bool,
         /// Whole laps of the loop.
         laps: usize,
+        /// Each robot goes on as far as the one ahead leaves room (else all stop while
+        /// any works, as one rigid ring).
+        following: bool,
         /// The loop, a closed path of G.
         loop_path: Vec<Vec2>,
     },

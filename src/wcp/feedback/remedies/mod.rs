@@ -119,7 +119,13 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> 
     // Every robot of a loop at once: for a pair that met before, or that nothing else
     // separates (robots on a ring corridor that cannot pass each other).
     if set.convoy && (again || children.is_empty()) {
-        children.extend(sides.iter().find_map(|side| convoy(ctx, view, side)));
+        children.extend(
+            sides
+                .iter()
+                .find_map(|side| convoy(ctx, view, side))
+                .into_iter()
+                .flatten(),
+        );
     }
     children
 }
