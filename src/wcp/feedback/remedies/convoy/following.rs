@@ -11,11 +11,10 @@
 //! whole like every other: the gaps are along the loop, and the checker has the last word
 //! where it bends.
 
-use super::ring::{plan, stretch_motion, Loop, Made, Plan, Rider};
+use super::ring::{made, plan, stretch_motion, Loop, Made, Plan, Rider};
 use crate::planning::PlannedMove;
 use crate::wcp::feedback::remedies::context::{Ctx, View};
-use crate::wcp::legs::{HoldReason, Leg, Legs, Piece};
-use crate::wcp::schedule::RobotSchedule;
+use crate::wcp::legs::{HoldReason, Leg, Piece};
 use std::sync::Arc;
 
 /// Where a robot stops behind the robot ahead, along the loop, in units of the two robots'
@@ -225,9 +224,7 @@ pub(super) fn traffic(
     if !cars.iter().all(|c| matches!(c.state, State::Done)) {
         return None;
     }
-    let mut legs: Legs = view.legs.to_vec();
-    let mut changed = Vec::new();
-    let mut latest: f64 = 0.0;
+    let mut ridden = Vec::new();
     for (i, (c, car)) in riders.iter().zip(&cars).enumerate() {
         let mut robot_legs = Vec::new();
         let mut pieces: Vec<Piece> = Vec::new();
@@ -263,12 +260,7 @@ pub(super) fn traffic(
                 done_tasks += 1;
             }
         }
-        let s =
-            RobotSchedule::build(ctx.cell, c.r, &view.routes[c.r], &robot_legs, ctx.moves).ok()?;
-        latest = latest.max(s.end);
-        legs[c.r] = Arc::new(robot_legs);
-        changed.push((c.r, Arc::new(s)));
+        ridden.push((c.r, robot_legs));
     }
-    let laps = (end / len).round() as usize;
-    Some((latest, legs, changed, way, laps))
+    made(ctx, view, ridden, way, end / len)
 }

@@ -19,11 +19,11 @@
 use super::context::{leg_nodes, occupancy, Child, Ctx, Side, View};
 use crate::planning::PlannedMove;
 use crate::wcp::feedback::{Remedy, RemedyKind};
-use crate::wcp::legs::{HoldReason, Leg, Legs, Piece};
+use crate::wcp::legs::{HoldReason, Leg, Piece};
 use crate::wcp::moves::node_pose;
-use crate::wcp::schedule::{route_nodes, Activity, RobotSchedule};
+use crate::wcp::schedule::{route_nodes, Activity};
 use following::traffic;
-use ring::{plan, stretch_motion, Loop, Made, Plan, Rider, ON_LOOP, SAME_STOP};
+use ring::{made, plan, stretch_motion, Loop, Made, Plan, Rider, ON_LOOP, SAME_STOP};
 use std::sync::Arc;
 
 mod following;
@@ -123,9 +123,7 @@ fn round(ctx: &Ctx, view: &View, ring: &Loop, riders: &[Rider], way: f64) -> Opt
     let stretch: Vec<f64> = (0..stop_times.len() - 1)
         .map(|k| motions.iter().map(|m| m[k].duration).fold(0.0, f64::max))
         .collect();
-    let mut legs: Legs = view.legs.to_vec();
-    let mut changed = Vec::new();
-    let mut latest: f64 = 0.0;
+    let mut ridden = Vec::new();
     for (i, (c, mine)) in riders.iter().zip(&motions).enumerate() {
         let nodes: Vec<f64> = at[i].iter().copied().chain([end]).collect();
         let mut robot_legs = Vec::new();
@@ -162,12 +160,7 @@ fn round(ctx: &Ctx, view: &View, ring: &Loop, riders: &[Rider], way: f64) -> Opt
                 });
             }
         }
-        let s =
-            RobotSchedule::build(ctx.cell, c.r, &view.routes[c.r], &robot_legs, ctx.moves).ok()?;
-        latest = latest.max(s.end);
-        legs[c.r] = Arc::new(robot_legs);
-        changed.push((c.r, Arc::new(s)));
+        ridden.push((c.r, robot_legs));
     }
-    let laps = (end / len).round() as usize;
-    Some((latest, legs, changed, way, laps))
+    made(ctx, view, ridden, way, end / len)
 }

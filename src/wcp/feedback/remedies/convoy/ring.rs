@@ -3,8 +3,8 @@
 
 use crate::geometry::Vec2;
 use crate::planning::{PlannedMove, Primitive};
-use crate::wcp::feedback::remedies::context::Ctx;
-use crate::wcp::legs::Legs;
+use crate::wcp::feedback::remedies::context::{Ctx, View};
+use crate::wcp::legs::{Leg, Legs};
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::RobotSchedule;
 use std::sync::Arc;
@@ -174,6 +174,27 @@ pub(super) struct Rider {
 /// What a convoy makes: the latest end of its robots, the legs, the changed robots'
 /// schedules, the way round (±1) and the laps.
 pub(super) type Made = (f64, Legs, Vec<(usize, Arc<RobotSchedule>)>, f64, usize);
+
+/// The convoy made: each rider's new legs (by robot) timed into its schedule, with the
+/// latest end, the way round and the laps (`turns`, a whole number up to rounding).
+pub(super) fn made(
+    ctx: &Ctx,
+    view: &View,
+    ridden: Vec<(usize, Vec<Leg>)>,
+    way: f64,
+    turns: f64,
+) -> Option<Made> {
+    let mut legs: Legs = view.legs.to_vec();
+    let mut changed = Vec::new();
+    let mut latest: f64 = 0.0;
+    for (r, robot_legs) in ridden {
+        let s = RobotSchedule::build(ctx.cell, r, &view.routes[r], &robot_legs, ctx.moves).ok()?;
+        latest = latest.max(s.end);
+        legs[r] = Arc::new(robot_legs);
+        changed.push((r, Arc::new(s)));
+    }
+    Some((latest, legs, changed, way, turns.round() as usize))
+}
 
 /// Where a convoy the way `way` (+1: as the loop's vertices run) stops each rider: every
 /// rider's tasks as (offset from its home along the loop, duration), the convoy's turn at
