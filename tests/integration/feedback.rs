@@ -431,20 +431,25 @@ fn patience_ends_the_search_once_it_stops_paying() {
 
 /// Remembering answers (a re-sequencing asked again, the remedies of a collision met again)
 /// changes the time, never the search: on a junction, where both are asked again often and
-/// their children differ in other robots' legs, the same nodes, rounds and schedule.
+/// their children differ in other robots' legs, and on a ring that a convoy solves (a
+/// convoy reads every robot's route), the same nodes, rounds and schedule.
 #[test]
 fn remembering_changes_nothing_but_the_time() {
-    let cell = conflict_cell(ConflictKind::Junction, 0);
-    let mut opts = SolveOptions::default();
-    opts.search.max_nodes = 300;
-    let remembered = solve_with(&cell, &opts);
-    opts.search.remember = false;
-    let asked_again = solve_with(&cell, &opts);
-    assert_eq!(remembered.nodes, asked_again.nodes);
-    assert_eq!(remembered.schedule.makespan, asked_again.schedule.makespan);
-    assert_eq!(remedies(&remembered), remedies(&asked_again));
-    let legs = |s: &Solved| format!("{:?}", s.legs);
-    assert_eq!(legs(&remembered), legs(&asked_again));
+    for cell in [
+        conflict_cell(ConflictKind::Junction, 0),
+        conflict_cell(ConflictKind::Ring, 8),
+    ] {
+        let mut opts = SolveOptions::default();
+        opts.search.max_nodes = 300;
+        let remembered = solve_with(&cell, &opts);
+        opts.search.remember = false;
+        let asked_again = solve_with(&cell, &opts);
+        assert_eq!(remembered.nodes, asked_again.nodes);
+        assert_eq!(remembered.schedule.makespan, asked_again.schedule.makespan);
+        assert_eq!(remedies(&remembered), remedies(&asked_again));
+        let legs = |s: &Solved| format!("{:?}", s.legs);
+        assert_eq!(legs(&remembered), legs(&asked_again));
+    }
 }
 
 /// A first schedule the checker can neither prove free nor show colliding (its work budget

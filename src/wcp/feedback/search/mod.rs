@@ -35,7 +35,7 @@ mod order;
 mod pending;
 mod roots;
 
-use super::fingerprint::fingerprint;
+use super::fingerprint::{fingerprint, pair_fingerprint};
 use super::outcome::{Iteration, Remedy, Solved};
 use super::reconfigure::{self, reconfigurations, Reconfig};
 use super::remedies::{candidates, Child, Ctx, View};
@@ -131,17 +131,16 @@ const SAME_MAKESPAN: f64 = 1e-9;
 /// re-sequencings of a 4-arm cell of 40 tasks.
 type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize);
 
-/// A collision as the remedies see it: the addresses of the two robots' schedules, the
-/// preparation's, the contact's time, and whether the pair met before on the branch. The
-/// remedies read only the two robots' routes, legs and schedules (one schedule object
-/// stands for one route and legs), so siblings that changed a third robot and then meet the
-/// same collision get the same children. Nodes share their unchanged robots' schedules, so
-/// this is common: a quarter of the expansions of a 4-arm cell of 40 tasks.
-type Met = (usize, usize, usize, u64, bool);
-
-/// The remedies' children for a [`Met`] collision, with the two schedules it names (held, so
-/// that their addresses stay theirs).
-type Remedied = ([Arc<RobotSchedule>; 2], Vec<Child>);
+/// A collision as the remedies see it: a digest of every route and of the two robots' legs
+/// (in the pair's order), the preparation's address, the contact's time, and whether the
+/// pair met before on the branch. The remedies read only the routes and the two robots'
+/// legs and schedules (a robot's schedule follows from its route and legs), so nodes that
+/// differ in a third robot, or that reached the same two robots' legs by different
+/// branches, and then meet the same collision get the same children: 45 % of the
+/// expansions of a junction of 4 robots and 8 tasks (28 % when schedules were known by
+/// address only). A convoy reads the other robots' routes too, and replaces their legs
+/// whole.
+type Met = (u128, usize, u64, bool);
 
 struct Search<'a> {
     cell: &'a Cell,
@@ -153,7 +152,7 @@ struct Search<'a> {
     /// The sequencer's answers by question, for re-sequencings asked again.
     sequenced: HashMap<Question, sequencer::Solution>,
     /// The remedies' children by collision, for a collision met again (see [`Met`]).
-    remedied: HashMap<Met, Remedied>,
+    remedied: HashMap<Met, Vec<Child>>,
     times: StageTimes,
     checked: usize,
     /// The collision-blind plan's makespan: what a re-sequencing waits in the queue at.
@@ -455,19 +454,17 @@ impl Search<'_> {
         let prepared = self.prepared_of(id);
         let ctx = Ctx::new(self.cell, &prepared.moves, self.opts);
         let again = self.met_before(id, &c);
-        let met = c.robots.1.map(|b| {
-            let (a, b) = (&view.robots[c.robots.0], &view.robots[b]);
-            let at = |s: &Arc<RobotSchedule>| Arc::as_ptr(s) as usize;
+        let met = c.robots.1.filter(|_| self.opts.search.remember).map(|b| {
+            let assignment = prepared.moves.assignment();
+            let digest = pair_fingerprint(view.routes, view.legs, assignment, (c.robots.0, b));
             let prepared_at = prepared as *const Prepared as usize;
-            let key = (at(a), at(b), prepared_at, c.time.to_bits(), again);
-            (key, [a.clone(), b.clone()])
+            (digest, prepared_at, c.time.to_bits(), again)
         });
-        let met = met.filter(|_| self.opts.search.remember);
-        let known = met.as_ref().and_then(|(key, _)| self.remedied.get(key));
+        let known = met.as_ref().and_then(|key| self.remedied.get(key));
         let mut learnt = None;
         let children = match known {
             // The same children, each in this node's legs.
-            Some((_, children)) => (children.iter())
+            Some(children) => (children.iter())
                 .map(|child| {
                     let mut legs = view.legs.clone();
                     for (r, _) in &child.changed {
@@ -481,7 +478,7 @@ impl Search<'_> {
                 .collect(),
             None => {
                 let children = candidates(&ctx, &view, &c, again);
-                learnt = met.map(|(key, pair)| (key, (pair, children.clone())));
+                learnt = met.map(|key| (key, children.clone()));
                 children
             }
         };
