@@ -3,9 +3,10 @@
 //! and the collisions of the feedback rounds' rejected schedules in a strip of their own
 //! under the lanes (they are not in the schedule drawn).
 
+use super::bars::{kind_colour, KINDS};
 use super::canvas::{line, page, text, titled};
 use super::labels::{text_width, Placer};
-use super::model::{kind_colour, Mark, Model, RobotView, KINDS};
+use super::model::{Mark, Model, RobotView};
 use svg::node::element::{Group, Polygon, Rectangle, Title};
 use svg::Document;
 

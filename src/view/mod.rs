@@ -5,6 +5,7 @@
 //! made from the result as its JSON carries it ([`crate::wcp::report::ResultJson`],
 //! [`crate::collision::CheckReport`]) and the scene of the trajectories drawn.
 
+mod bars;
 mod canvas;
 mod chart;
 mod gantt;
@@ -15,12 +16,11 @@ mod model;
 mod picture;
 mod rings;
 
+pub use bars::{kind_colour, Bar, KINDS};
 pub use canvas::Frame;
 pub use chart::chart;
 pub use gantt::{gantt, gantt_svg, TimeAxis};
 pub use html::html;
 pub use labels::{text_width, Placer};
-pub use model::{
-    kind_colour, pose_at, ArmView, Bar, Mark, Model, RobotView, TaskView, COLOURS, KINDS,
-};
+pub use model::{pose_at, ArmView, Mark, Model, RobotView, TaskView, COLOURS};
 pub use picture::{cell_svg, picture, placed};
