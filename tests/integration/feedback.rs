@@ -723,3 +723,36 @@ fn assert_ring_solved_with(
     let on_branch = solved.iterations.iter().filter_map(|it| it.remedy.as_ref());
     assert!(on_branch.map(|r| &r.kind).any(used));
 }
+
+/// The search checks a changed schedule's robots against each other only (every motion it
+/// adds is certified clear of the fixtures when made), but an answer it gives, certified or
+/// not, carries the report of the whole schedule, fixtures included, as `workcell check`
+/// gives it: on a junction between four blocks, both after the search and with no remedy
+/// but waiting (no certified schedule).
+#[test]
+fn an_answer_is_reported_as_the_whole_schedule_is_checked() {
+    let cell = conflict_cell(ConflictKind::Junction, 0);
+    let mut few = SolveOptions::default();
+    few.search.max_nodes = 100;
+    let waiting = only(&["wait"]);
+    for (opts, free) in [(few, true), (waiting, false)] {
+        let solved = solve_with(&cell, &opts);
+        assert_eq!(solved.collision_free, free);
+        assert!(solved.iterations.len() > 1, "an answer the remedies made");
+        let whole = solved
+            .schedule
+            .check(&solved.schedule.scene(&cell), &CheckOptions::default());
+        let robots = cell.robots.len();
+        assert_eq!(whole.pairs, solved.report.pairs);
+        assert!(
+            solved.report.pairs > robots * (robots - 1) / 2,
+            "fixtures too"
+        );
+        assert_eq!(whole.certified, solved.report.certified);
+        assert_eq!(whole.stats, solved.report.stats);
+        assert_eq!(
+            whole.first_contact.map(|c| c.time),
+            solved.report.first_contact.map(|c| c.time)
+        );
+    }
+}

@@ -89,10 +89,30 @@ impl Schedule {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn scene(&self, cell: &Cell) -> Scene {
-        let robots = (0..self.robots.len()).flat_map(|r| self.bodies(cell, r));
+        let mut scene = self.robots_scene(cell);
+        scene.bodies.extend(cell.obstacle_bodies());
+        scene
+    }
+
+    /// The robots alone, as in [`Schedule::scene`] without the obstacles: what a schedule
+    /// whose every motion was certified clear of the fixtures leaves to check.
+    ///
+    /// ```
+    /// use workcell::planning::PlannerOptions;
+    /// use workcell::wcp::{legs::default_legs, MoveStore, Schedule};
+    /// let cell = workcell::cell::load_cell(concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json").as_ref())?.cell;
+    /// let store = MoveStore::new(&cell, &PlannerOptions::default());
+    /// let schedule = Schedule::build(&cell, &[vec![0, 1], vec![2, 3]], &default_legs(2), &store).unwrap();
+    /// let names: Vec<String> = schedule.robots_scene(&cell).bodies.into_iter().map(|b| b.name).collect();
+    /// assert_eq!(names, ["R1", "R2"]);
+    /// # Ok::<(), workcell::cell::InputError>(())
+    /// ```
+    pub fn robots_scene(&self, cell: &Cell) -> Scene {
         Scene {
             delta: cell.delta,
-            bodies: robots.chain(cell.obstacle_bodies()).collect(),
+            bodies: (0..self.robots.len())
+                .flat_map(|r| self.bodies(cell, r))
+                .collect(),
         }
     }
 

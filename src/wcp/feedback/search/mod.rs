@@ -2,7 +2,9 @@
 //! al., "Conflict-based search for optimal multi-agent pathfinding", 2015).
 //!
 //! A search node is a schedule: routes, the conflicts the sequencer must avoid, and every
-//! robot's legs. Every node is checked when it is made. A node whose schedule collides
+//! robot's legs. Every node is checked when it is made (`verdict.rs`: a root whole; any
+//! other node's robots against each other, as every motion it adds is certified clear of the
+//! fixtures when made, and whole once found free). A node whose schedule collides
 //! branches into its children, one per way out of that collision: either robot yielding by
 //! each remedy of `remedies/` (each the least of its kind that clears the pair), or the
 //! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
@@ -31,12 +33,14 @@
 //! that reaches it may differ from run to run). Without any certified schedule, the search
 //! reports the schedule whose first collision came latest, and that collision.
 
+mod answer;
 mod order;
 mod pending;
 mod roots;
+mod verdict;
 
 use super::fingerprint::{fingerprint, pair_fingerprint};
-use super::outcome::{Iteration, Remedy, Solved};
+use super::outcome::{Remedy, Solved};
 use super::reconfigure::{self, reconfigurations, Reconfig};
 use super::remedies::{candidates, Child, Ctx, View};
 use crate::cell::{Cell, InputError};
@@ -44,11 +48,10 @@ use crate::collision::CheckReport;
 use crate::wcp::legs::{default_legs, Legs};
 use crate::wcp::options::SolveOptions;
 use crate::wcp::prepare::{Prepared, Progress, StageTimes};
-use crate::wcp::schedule::{Collision, RobotSchedule, Schedule};
+use crate::wcp::schedule::{Collision, RobotSchedule};
 use crate::wcp::sequence::sequence_blind;
 use crate::wcp::sequencer::{self, Conflict};
 use order::{Key, Ordered, Rank};
-use rayon::prelude::*;
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::sync::Arc;
@@ -95,6 +98,8 @@ enum Pending {
 struct Outcome {
     report: CheckReport,
     collision: Option<Collision>,
+    /// Whether the fixtures were in the check (see [`Search::check_all`]).
+    whole: bool,
 }
 
 /// What a node's schedule is, by the checker.
@@ -107,16 +112,6 @@ enum Status {
     /// Neither proven free nor shown to collide (a graze of δ, the checker's work budget):
     /// a dead end, reported as the greedy loop reports it when nothing better is found.
     Undecided,
-}
-
-impl Outcome {
-    fn status(&self) -> Status {
-        match (&self.collision, self.report.verdict().is_certified_free()) {
-            (Some(_), _) => Status::Collides,
-            (None, true) => Status::Free,
-            (None, false) => Status::Undecided,
-        }
-    }
 }
 
 /// Two makespans closer than this (relative) are the same: a node must beat the bound by
@@ -178,23 +173,7 @@ pub(super) fn solve(
     let clock = Instant::now();
     let mut blind = sequence_blind(cell, prepared, opts, progress)?;
     times.sequencing += clock.elapsed();
-    let mut search = Search {
-        cell,
-        prepared,
-        opts,
-        nodes: Vec::new(),
-        queue: BinaryHeap::new(),
-        seen: HashSet::new(),
-        sequenced: HashMap::new(),
-        remedied: HashMap::new(),
-        times,
-        checked: 0,
-        blind_makespan: blind.makespan,
-        best: None,
-        best_at: 0,
-        furthest: None,
-        capped: 0,
-    };
+    let mut search = Search::new(cell, prepared, opts, times, blind.makespan);
     let root = search.add_root(&blind.sequences)?.expect("the first node");
     search.check_all(&[root], progress);
     if search.collision(root).is_some() {
@@ -208,6 +187,35 @@ pub(super) fn solve(
     }
     let (id, failure) = search.outcome(stop);
     Ok(search.finish(id, failure, &blind))
+}
+
+impl<'a> Search<'a> {
+    /// A search with no node yet, `times` spent before it.
+    fn new(
+        cell: &'a Cell,
+        prepared: &'a Prepared,
+        opts: &'a SolveOptions,
+        times: StageTimes,
+        blind_makespan: f64,
+    ) -> Self {
+        Search {
+            cell,
+            prepared,
+            opts,
+            nodes: Vec::new(),
+            queue: BinaryHeap::new(),
+            seen: HashSet::new(),
+            sequenced: HashMap::new(),
+            remedied: HashMap::new(),
+            times,
+            checked: 0,
+            blind_makespan,
+            best: None,
+            best_at: 0,
+            furthest: None,
+            capped: 0,
+        }
+    }
 }
 
 impl Search<'_> {
@@ -287,51 +295,6 @@ impl Search<'_> {
         self.best.is_some() && self.checked - self.best_at >= patience.max(self.best_at)
     }
 
-    /// The node the search answers with, and why it is not collision-free if it is not: the
-    /// best certified node, or else the one that got furthest, with what was exhausted
-    /// (`stop`: the budget that ended the search, none when it ran out of nodes), the robots
-    /// that block each other and where.
-    fn outcome(&self, stop: Option<String>) -> (usize, Option<String>) {
-        if let Some(id) = self.best {
-            return (id, None);
-        }
-        // No node collides and none is certified: the first schedule itself could be
-        // neither proven free nor shown to collide.
-        let Some(id) = self.furthest else {
-            let report = &self.nodes[0].outcome.as_ref().expect("checked").report;
-            return (0, Some(super::unresolved(report)));
-        };
-        let c = self.collision(id).expect("a colliding node");
-        let max_iterations = self.opts.max_iterations;
-        let deepest = (self.nodes.iter())
-            .filter(|n| n.outcome.is_some())
-            .map(|n| n.depth)
-            .max()
-            .unwrap_or(0);
-        let exhausted = match stop {
-            Some(budget) => format!("{budget} ran out"),
-            None if self.capped > 0 => format!(
-                "the limit of {max_iterations} round{} cut {} line{} of remedies short, and \
-                 every other remedy was tried",
-                if max_iterations == 1 { "" } else { "s" },
-                self.capped,
-                if self.capped == 1 { "" } else { "s" }
-            ),
-            None if deepest == 0 => "no remedy clears the first schedule's collision".to_owned(),
-            None => format!(
-                "every remedy was tried ({} schedules checked, over up to {deepest} round{})",
-                self.checked,
-                if deepest == 1 { "" } else { "s" }
-            ),
-        };
-        let failure = format!(
-            "{exhausted}; {}; the schedule that got furthest collides: {}",
-            super::outcome::blockers(self.cell, c),
-            super::describe(self.cell, c)
-        );
-        (id, Some(failure))
-    }
-
     /// The preparation node `id` works with.
     fn prepared_of(&self, id: usize) -> &Prepared {
         self.nodes[id].prepared.as_deref().unwrap_or(self.prepared)
@@ -369,50 +332,6 @@ impl Search<'_> {
             let bound = self.nodes[b].makespan;
             self.nodes[id].makespan < bound * (1.0 - SAME_MAKESPAN)
         })
-    }
-
-    /// Checks the nodes given (in parallel, results in order) and records the verdicts.
-    fn check_all(&mut self, ids: &[usize], progress: &dyn Progress) {
-        let clock = Instant::now();
-        let (cell, check_opts) = (self.cell, &self.opts.check);
-        let outcomes: Vec<Outcome> = ids
-            .par_iter()
-            .map(|&id| {
-                let schedule = Schedule::of(self.nodes[id].robots.clone());
-                let report = schedule.check(&schedule.scene(cell), check_opts);
-                let collision = schedule.collision(cell, &report);
-                Outcome { report, collision }
-            })
-            .collect();
-        self.times.checking += clock.elapsed();
-        for (&id, outcome) in ids.iter().zip(outcomes) {
-            self.checked += 1;
-            progress.iteration(
-                self.checked,
-                self.nodes[id].makespan,
-                outcome.collision.as_ref(),
-            );
-            let status = outcome.status();
-            self.nodes[id].outcome = Some(outcome);
-            match status {
-                Status::Free if self.worth(id) => {
-                    self.best = Some(id);
-                    self.best_at = self.checked;
-                    progress.certified(self.nodes[id].makespan);
-                }
-                Status::Free | Status::Undecided => {}
-                Status::Collides => {
-                    let t = self.collision(id).map(|c| c.time);
-                    let later = self
-                        .furthest
-                        .and_then(|f| self.collision(f).map(|c| c.time))
-                        .is_none_or(|best| t.is_some_and(|t| t > best));
-                    if later {
-                        self.furthest = Some(id);
-                    }
-                }
-            }
-        }
     }
 
     /// Whether the two robots of collision `c` of node `id` collided in an ancestor of it
@@ -609,44 +528,6 @@ impl Search<'_> {
             if self.collision(k).is_some() {
                 self.enqueue(k);
             }
-        }
-    }
-
-    /// The result for node `id`: its schedule, and the rounds from the root to it.
-    fn finish(self, id: usize, failure: Option<String>, blind: &sequencer::Solution) -> Solved {
-        let mut path = vec![id];
-        while let Some(p) = self.nodes[*path.last().unwrap()].parent {
-            path.push(p);
-        }
-        path.reverse();
-        let iterations = path
-            .iter()
-            .enumerate()
-            .map(|(k, &n)| Iteration {
-                makespan: self.nodes[n].makespan,
-                collision: self.collision(n).cloned(),
-                remedy: path
-                    .get(k + 1)
-                    .and_then(|&next| self.nodes[next].remedy.clone()),
-            })
-            .collect();
-        let node = &self.nodes[id];
-        let report = node.outcome.as_ref().expect("checked").report.clone();
-        Solved {
-            routes: (*node.routes).clone(),
-            legs: node.legs.clone(),
-            schedule: Schedule::of(node.robots.clone()),
-            collision_free: failure.is_none(),
-            report,
-            iterations,
-            blind_routes: blind.sequences.clone(),
-            blind_makespan: blind.makespan,
-            blind_optimal: blind.optimal,
-            failure,
-            assignment: self.prepared_of(id).moves.assignment().clone(),
-            times: self.times,
-            nodes: self.checked,
-            found_after: self.best.map(|_| self.best_at),
         }
     }
 }
