@@ -253,27 +253,45 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
     }
 }
 
+/// Cell `k` of `workcell generate --kind <kind> --seed 1`, written into a folder of the
+/// test `tag`: its path.
+fn generated(tag: &str, kind: &str, k: usize) -> String {
+    let dir = temp_dir_made("solve", tag).join("cells");
+    let count = (k + 1).to_string();
+    let out = workcell(&[
+        "generate",
+        "--kind",
+        kind,
+        "--seed",
+        "1",
+        "--count",
+        &count,
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let cell = dir.join(format!("{kind}-1-{k}-cell.json"));
+    cell.to_str().unwrap().to_owned()
+}
+
+/// `evaluate` replays a solve's result document (its changed moves and holds) to the same
+/// makespan.
+fn replays_to_the_same_makespan(cell: &str, solved: &std::process::Output, tag: &str) {
+    let document = temp_dir_made("solve", tag).join("result.json");
+    std::fs::write(&document, &solved.stdout).unwrap();
+    let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    assert_eq!(json(&out)["makespan"], json(solved)["makespan"]);
+}
+
 /// `tune` times two robots' moves together: the round says so under `"tune"` (both robots,
 /// both moves, every hold), the text in a sentence, and `evaluate` replays the held moves
 /// to the same makespan. Without it (`--remedies` naming the others) the ring is refused
 /// (exit 1).
 #[test]
 fn two_moves_timed_together_are_reported_and_replayed() {
-    let dir = temp_dir_made("solve", "tune").join("cells");
-    let out = workcell(&[
-        "generate",
-        "--kind",
-        "ring",
-        "--seed",
-        "1",
-        "--count",
-        "7",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(0));
-    let cell = dir.join("ring-1-6-cell.json");
-    let cell = cell.to_str().unwrap();
+    let cell = generated("tune", "ring", 6);
+    let cell = cell.as_str();
     let others = "resequence,wait,pause,slow,detour,step-aside";
     let refused = workcell(&["solve", cell, "--remedies", others]);
     assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
@@ -298,11 +316,7 @@ fn two_moves_timed_together_are_reported_and_replayed() {
     }
     let words = workcell(&["solve", cell]);
     assert!(text(&words.stdout).contains("time their moves together"));
-    let document = temp_dir_made("solve", "tune").join("result.json");
-    std::fs::write(&document, &solved.stdout).unwrap();
-    let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
-    assert_eq!(json(&out)["makespan"], result["makespan"]);
+    replays_to_the_same_makespan(cell, &solved, "tune");
 }
 
 /// A convoy sends every robot of a ring round it together: the round says so under
@@ -311,21 +325,8 @@ fn two_moves_timed_together_are_reported_and_replayed() {
 /// ring is refused (exit 1).
 #[test]
 fn a_convoy_is_reported_and_replayed() {
-    let dir = temp_dir_made("solve", "convoy").join("cells");
-    let out = workcell(&[
-        "generate",
-        "--kind",
-        "ring",
-        "--seed",
-        "1",
-        "--count",
-        "9",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(0));
-    let cell = dir.join("ring-1-8-cell.json");
-    let cell = cell.to_str().unwrap();
+    let cell = generated("convoy", "ring", 8);
+    let cell = cell.as_str();
     let others = "resequence,wait,pause,slow,detour,step-aside,tune";
     let refused = workcell(&["solve", cell, "--remedies", others]);
     assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
@@ -354,30 +355,13 @@ fn a_convoy_is_reported_and_replayed() {
     let words = workcell(&["solve", cell]);
     assert!(text(&words.stdout).contains("go round the loop together, "));
     assert!(text(&words.stdout).contains("each following the one ahead"));
-    let document = temp_dir_made("solve", "convoy").join("result.json");
-    std::fs::write(&document, &solved.stdout).unwrap();
-    let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
-    assert_eq!(json(&out)["makespan"], result["makespan"]);
+    replays_to_the_same_makespan(cell, &solved, "convoy");
 }
 
 #[test]
 fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
-    let dir = temp_dir_made("solve", "legs").join("cells");
-    let out = workcell(&[
-        "generate",
-        "--kind",
-        "junction",
-        "--seed",
-        "1",
-        "--count",
-        "1",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(0));
-    let cell = dir.join("junction-1-0-cell.json");
-    let cell = cell.to_str().unwrap();
+    let cell = generated("legs", "junction", 0);
+    let cell = cell.as_str();
     let solved = workcell(&["solve", cell, "--json", "--search-nodes", "300"]);
     assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
     let result = json(&solved);
