@@ -34,6 +34,43 @@ mod ring;
 /// of a kind whose motions are not certified clear of the fixtures); `None` when the loop
 /// does not hold both robots of the collision.
 pub(super) fn convoy(ctx: &Ctx, view: &View, side: &Side) -> Option<Vec<Child>> {
+    let (ring, riders) = gather(ctx, view, side)?;
+    let x = side.x;
+    let m = side.sx.leg?;
+    let (from, to) = leg_nodes(view, x, m);
+    // As traffic (each robot behind the one ahead) and as one rigid ring, each the way
+    // round that ends sooner: the first is shorter, the second holds every gap as at home
+    // when the first cannot be made or is refused by the checker.
+    type Make = fn(&Ctx, &View, &Loop, &[Rider], f64) -> Option<Made>;
+    let ways: [(bool, Make); 2] = [(true, traffic), (false, round)];
+    let children = ways.into_iter().filter_map(|(following, make)| {
+        let made = [1.0, -1.0]
+            .into_iter()
+            .filter_map(|way| make(ctx, view, &ring, &riders, way))
+            .min_by(|p, q| p.0.total_cmp(&q.0))?;
+        let (_, legs, changed, way, laps) = made;
+        let kind = RemedyKind::Convoy {
+            robots: riders.iter().map(|c| c.r).collect(),
+            counter_clockwise: (way > 0.0) == ring.counter_clockwise(),
+            laps,
+            following,
+            loop_path: ring.points.clone(),
+        };
+        Some(Child {
+            legs,
+            changed,
+            remedy: Remedy::on(x, m, (from, to), kind),
+            last_resort: true,
+        })
+    });
+    Some(children.collect())
+}
+
+/// The loop of collision `side` and the robots on it: the colliding robot's planned move
+/// and its way round the other side (around the other robot where they met), and every
+/// rigid robot whose home and tasks lie within [`ON_LOOP`] of its radius of that loop;
+/// `None` when the loop does not hold both robots of the collision.
+fn gather(ctx: &Ctx, view: &View, side: &Side) -> Option<(Loop, Vec<Rider>)> {
     let (x, y) = (side.x, side.y);
     let rigid = |r: usize| ctx.cell.robots[r].as_arm().is_none();
     if !rigid(x) || !rigid(y) || !matches!(side.sx.activity, Activity::Move { .. }) {
@@ -66,35 +103,8 @@ pub(super) fn convoy(ctx: &Ctx, view: &View, side: &Side) -> Option<Vec<Child>> 
                 .then_some(Rider { r, home, nodes })
         })
         .collect();
-    if !riders.iter().any(|c| c.r == x) || !riders.iter().any(|c| c.r == y) {
-        return None;
-    }
-    // As traffic (each robot behind the one ahead) and as one rigid ring, each the way
-    // round that ends sooner: the first is shorter, the second holds every gap as at home
-    // when the first cannot be made or is refused by the checker.
-    type Make = fn(&Ctx, &View, &Loop, &[Rider], f64) -> Option<Made>;
-    let ways: [(bool, Make); 2] = [(true, traffic), (false, round)];
-    let children = ways.into_iter().filter_map(|(following, make)| {
-        let made = [1.0, -1.0]
-            .into_iter()
-            .filter_map(|way| make(ctx, view, &ring, &riders, way))
-            .min_by(|p, q| p.0.total_cmp(&q.0))?;
-        let (_, legs, changed, way, laps) = made;
-        let kind = RemedyKind::Convoy {
-            robots: riders.iter().map(|c| c.r).collect(),
-            counter_clockwise: (way > 0.0) == ring.counter_clockwise(),
-            laps,
-            following,
-            loop_path: ring.points.clone(),
-        };
-        Some(Child {
-            legs,
-            changed,
-            remedy: Remedy::on(x, m, (from, to), kind),
-            last_resort: true,
-        })
-    });
-    Some(children.collect())
+    let on_it = |r: usize| riders.iter().any(|c| c.r == r);
+    (on_it(x) && on_it(y)).then_some((ring, riders))
 }
 
 /// The riders round the loop the way `way`, as one rigid ring.
@@ -163,4 +173,73 @@ fn round(ctx: &Ctx, view: &View, ring: &Loop, riders: &[Rider], way: f64) -> Opt
         ridden.push((c.r, robot_legs));
     }
     made(ctx, view, ridden, way, end / len)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::context::TestCell;
+    use super::*;
+    use crate::generate::{generate_conflict_cell, ConflictKind};
+    use crate::wcp::schedule::Schedule;
+
+    /// The convoy goes the way round that ends sooner: on a ring of seven robots where R1
+    /// has a second task, the way on which R1 meets its tasks in its route's order takes
+    /// one lap and the other two. With R1's tasks in either order, the convoy (following)
+    /// takes the one-lap way; in one of the two orders that is the loop's way -1.
+    #[test]
+    fn the_convoy_goes_the_way_round_that_ends_sooner() {
+        let mut cell = generate_conflict_cell(ConflictKind::Ring, 1, 8);
+        let second = serde_json::json!({
+            "name": "R1-weld-2", "at": [0.5, 2.275, 0.0], "duration": 1.0, "robots": ["R1"]
+        });
+        cell["tasks"].as_array_mut().unwrap().push(second);
+        let text = cell.to_string();
+        let mut one_lap_ways = Vec::new();
+        for first in [vec![0, 7], vec![7, 0]] {
+            let routes: Vec<Vec<usize>> = std::iter::once(first)
+                .chain((1..7).map(|k| vec![k]))
+                .collect();
+            let t = TestCell::new(&text, routes);
+            let (ctx, view) = (t.ctx(), t.view());
+            let schedule = Schedule::of(view.robots.to_vec());
+            let report = schedule.check(&schedule.scene(&t.cell), &ctx.opts.check);
+            let c = schedule.collision(&t.cell, &report).expect("a collision");
+            let (a, b) = (c.robots.0, c.robots.1.unwrap());
+            let (sa, sb) = (c.segments.0, c.segments.1.unwrap());
+            let side = [(a, b, sa, sb), (b, a, sb, sa)]
+                .map(|(x, y, sx, sy)| Side {
+                    x,
+                    y,
+                    sx,
+                    sy,
+                    t: c.time,
+                })
+                .into_iter()
+                .find(|side| gather(&ctx, &view, side).is_some())
+                .expect("a loop holding both");
+            let (ring, riders) = gather(&ctx, &view, &side).unwrap();
+            let laps = |way: f64| traffic(&ctx, &view, &ring, &riders, way).unwrap().4;
+            let one_lap = match (laps(1.0), laps(-1.0)) {
+                (1, 2) => 1.0,
+                (2, 1) => -1.0,
+                other => panic!("laps both ways {other:?}"),
+            };
+            let children = convoy(&ctx, &view, &side).expect("a convoy");
+            let chosen = (children.iter())
+                .find_map(|child| match &child.remedy.kind {
+                    RemedyKind::Convoy {
+                        following: true,
+                        counter_clockwise,
+                        laps,
+                        ..
+                    } => Some((*counter_clockwise, *laps)),
+                    _ => None,
+                })
+                .expect("a following convoy");
+            let counter_clockwise = (one_lap > 0.0) == ring.counter_clockwise();
+            assert_eq!(chosen, (counter_clockwise, 1));
+            one_lap_ways.push(one_lap);
+        }
+        assert!(one_lap_ways.contains(&-1.0), "{one_lap_ways:?}");
+    }
 }
