@@ -101,20 +101,18 @@ pub(super) fn traffic(
         let lap = if k + 1 == n { len } else { 0.0 };
         ahead[i] = (j, base[j] + lap - base[i]);
     }
-    let gap: Vec<f64> = (0..n)
-        .map(|i| {
-            let (j, apart) = ahead[i];
-            let wanted = FOLLOW_GAP * (radius(i) + radius(j)) + 2.0 * ctx.cell.delta;
-            wanted.min(apart)
-        })
-        .collect();
-    let passing: Vec<f64> = (0..n)
-        .map(|i| {
-            let (j, apart) = ahead[i];
-            let wanted = PASSING_GAP * (radius(i) + radius(j)) + 2.0 * ctx.cell.delta;
-            wanted.min(apart)
-        })
-        .collect();
+    // Each rider's distance to the one ahead at `factor` times their radii summed, plus 2δ,
+    // no more than they stand apart at home.
+    let spacing = |factor: f64| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let (j, apart) = ahead[i];
+                let wanted = factor * (radius(i) + radius(j)) + 2.0 * ctx.cell.delta;
+                wanted.min(apart)
+            })
+            .collect()
+    };
+    let (gap, passing) = (spacing(FOLLOW_GAP), spacing(PASSING_GAP));
     let targets: Vec<Vec<f64>> = (at.iter())
         .map(|mine| mine.iter().copied().chain([end]).collect())
         .collect();
