@@ -77,19 +77,17 @@ impl Search<'_> {
             .collect();
         let node = &self.nodes[id];
         let outcome = node.outcome.as_ref().expect("checked");
+        let schedule = Schedule::of(node.robots.clone());
         // An answer that is not free was checked for its robots only: its report is that of
         // the whole schedule, as the user checks it.
         let report = match outcome.whole {
             true => outcome.report.clone(),
-            false => {
-                let schedule = Schedule::of(node.robots.clone());
-                Outcome::of(self.cell, &schedule, &self.opts.check, true).report
-            }
+            false => Outcome::of(self.cell, &schedule, &self.opts.check, true).report,
         };
         Solved {
             routes: (*node.routes).clone(),
             legs: node.legs.clone(),
-            schedule: Schedule::of(node.robots.clone()),
+            schedule,
             collision_free: failure.is_none(),
             report,
             iterations,
