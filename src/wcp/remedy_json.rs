@@ -30,6 +30,33 @@ pub enum ChangeJson {
     Tune(TuneJson),
     /// Every robot of a loop round it together.
     Convoy(ConvoyJson),
+    /// The answer's waits and holds shortened.
+    Tighten(TightenJson),
+}
+
+/// The answer's waits and holds shortened as far as the other robots allow, in the order
+/// they were.
+#[derive(Serialize)]
+pub struct TightenJson {
+    /// Each one shortened.
+    pub shortened: Vec<ShortenedJson>,
+}
+
+/// A wait or hold shortened.
+#[derive(Serialize)]
+pub struct ShortenedJson {
+    /// The robot.
+    pub robot: String,
+    /// Its move: the wait before it, or a hold on its way (a pause, a stay at a parking
+    /// pose).
+    pub on: String,
+    /// `wait` (before the move), `pause` (on its way) or `park` (at a parking pose on its
+    /// way).
+    pub kind: &'static str,
+    /// How long it was.
+    pub before: f64,
+    /// How long it is.
+    pub after: f64,
 }
 
 /// Every robot of a closed corridor round it together, the same way.
@@ -184,6 +211,7 @@ pub fn remedy_name(r: &Remedy) -> &'static str {
         RemedyKind::Tune { .. } => "tune",
         RemedyKind::Convoy { .. } => "convoy",
         RemedyKind::Reconfigure { .. } => "reconfigure",
+        RemedyKind::Tighten { .. } => "tighten",
     }
 }
 
@@ -296,6 +324,21 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             at: cell.tasks[*task].name.clone(),
             joints: joints.clone(),
         }),
+        RemedyKind::Tighten { shortened } => ChangeJson::Tighten(TightenJson {
+            shortened: (shortened.iter())
+                .map(|h| ShortenedJson {
+                    robot: cell.robots[h.robot].name.clone(),
+                    on: move_name(cell, h.robot, h.nodes),
+                    kind: match h.reason {
+                        None => "wait",
+                        Some(HoldReason::Pause) => "pause",
+                        Some(HoldReason::Park) => "park",
+                    },
+                    before: h.before,
+                    after: h.after,
+                })
+                .collect(),
+        }),
     })
 }
 
@@ -387,6 +430,36 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
                 names(cell, robots).join(", "),
                 direction(*counter_clockwise)
             )
+        }
+        RemedyKind::Tighten { shortened } => {
+            let each: Vec<String> = (shortened.iter())
+                .map(|h| {
+                    let (r, on) = (
+                        &cell.robots[h.robot].name,
+                        move_name(cell, h.robot, h.nodes),
+                    );
+                    let (after, before) = (seconds(h.after), seconds(h.before));
+                    match h.reason {
+                        None => format!("{r} waits {after} (was {before}) before its {on}"),
+                        Some(HoldReason::Pause) => {
+                            format!("{r} pauses {after} (was {before}) on its {on}")
+                        }
+                        Some(HoldReason::Park) => {
+                            format!("{r} stays aside {after} (was {before}) on its {on}")
+                        }
+                    }
+                })
+                .collect();
+            // The JSON lists them all; a sentence, the first few.
+            const SAID: usize = 4;
+            match each.len() {
+                n if n > SAID => format!(
+                    "shortened: {}; and {} more",
+                    each[..SAID].join("; "),
+                    n - SAID
+                ),
+                _ => format!("shortened: {}", each.join("; ")),
+            }
         }
         RemedyKind::Reconfigure { task, joints } => {
             let angles: Vec<String> = joints.iter().map(|a| format!("{a:.3}")).collect();

@@ -442,7 +442,8 @@ pub fn summary(
         .iter()
         .map(|it| {
             let what = match (&it.collision, &it.remedy) {
-                (None, _) => "collision-free".to_owned(),
+                (None, None) => "collision-free".to_owned(),
+                (None, Some(r)) => format!("collision-free; {}", remedy_text(cell, r)),
                 (Some(c), Some(r)) => {
                     format!("{}; {}", describe(cell, c), remedy_text(cell, r))
                 }

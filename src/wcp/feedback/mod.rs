@@ -15,8 +15,8 @@ mod remedies;
 mod search;
 
 pub use outcome::{
-    describe, place, uncertified, unresolved, Iteration, Remedy, RemedyKind, RemedyLeg, Solved,
-    TunedHold, HEMMED_IN,
+    describe, place, uncertified, unresolved, Iteration, Remedy, RemedyKind, RemedyLeg, Shortened,
+    Solved, TunedHold, HEMMED_IN,
 };
 
 use super::choose::choose_configurations;

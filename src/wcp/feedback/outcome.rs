@@ -7,7 +7,7 @@ use crate::geometry::Vec2;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, WalkTolerances};
 use crate::motion::Pose;
 use crate::wcp::configurations::Assignment;
-use crate::wcp::legs::Legs;
+use crate::wcp::legs::{HoldReason, Legs};
 use crate::wcp::moves::MoveStore;
 use crate::wcp::prepare::StageTimes;
 use crate::wcp::schedule::{Activity, BuildError, Collision, Delay, Schedule};
@@ -112,6 +112,30 @@ pub enum RemedyKind {
         /// The loop, a closed path of G.
         loop_path: Vec<Vec2>,
     },
+    /// The answer's waits and holds shortened as far as the other robots allow (no
+    /// collision answered: the last round, on a certified schedule).
+    Tighten {
+        /// Each hold shortened, in the order it was.
+        shortened: Vec<Shortened>,
+    },
+}
+
+/// A hold of the answer shortened ([`RemedyKind::Tighten`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shortened {
+    /// The robot.
+    pub robot: usize,
+    /// The leg (move of its route, 0 out of home).
+    pub leg: usize,
+    /// The leg's nodes.
+    pub nodes: (usize, usize),
+    /// Why the robot holds on the leg's way (a pause, a stay at a parking pose); `None`
+    /// for the wait at the leg's start.
+    pub reason: Option<HoldReason>,
+    /// How long it was.
+    pub before: f64,
+    /// How long it is.
+    pub after: f64,
 }
 
 /// A stop of a robot on a move timed with another's ([`RemedyKind::Tune`]).

@@ -37,6 +37,7 @@ mod answer;
 mod order;
 mod pending;
 mod roots;
+mod tighten;
 mod verdict;
 
 use super::fingerprint::{fingerprint, pair_fingerprint};
@@ -156,6 +157,8 @@ struct Search<'a> {
     best: Option<usize>,
     /// Schedules checked when it was found.
     best_at: usize,
+    /// Every node that was the best certified one when found, in order.
+    incumbents: Vec<usize>,
     /// The colliding node whose first collision came latest.
     furthest: Option<usize>,
     /// Colliding nodes left unexpanded at the limit of rounds.
@@ -185,6 +188,7 @@ pub(super) fn solve(
     while stop.is_none() && search.refine(&mut blind, progress)? {
         stop = search.run(started, progress)?;
     }
+    search.tighten_all(progress);
     let (id, failure) = search.outcome(stop);
     Ok(search.finish(id, failure, &blind))
 }
@@ -212,6 +216,7 @@ impl<'a> Search<'a> {
             blind_makespan,
             best: None,
             best_at: 0,
+            incumbents: Vec::new(),
             furthest: None,
             capped: 0,
         }

@@ -79,6 +79,7 @@ impl Search<'_> {
                 Status::Free if self.worth(id) => {
                     self.best = Some(id);
                     self.best_at = self.checked;
+                    self.incumbents.push(id);
                     progress.certified(self.nodes[id].makespan);
                 }
                 Status::Free | Status::Undecided => {}

@@ -1,0 +1,375 @@
+//! The answer's holds, shortened as far as the other robots allow.
+//!
+//! Each remedy makes the least change that clears one collision, given the schedule it
+//! answers; changes made later on the same branch move the other robots, so an early wait
+//! may no longer need all of its length. Once the search ends, every schedule that was the
+//! best when found has its waits and holds shortened, robot by robot (the one that ends
+//! last first, since a robot that goes sooner may leave room for it), in passes until none
+//! shortens: a robot's first hold, in time order, that can be shortened takes the least of
+//! a few fractions of its length, then bisected, after which the checker proves that robot
+//! clear of every other from the hold on. The answer is the shortest of all of them,
+//! shortened or not: one found earlier may shorten further. Paths are kept: only the times
+//! at which a robot rests where it already rests change, so the fixtures need no new check
+//! (the result is checked whole anyway).
+
+use super::{Node, Outcome, Search, Status};
+use crate::wcp::feedback::clearing::clears;
+use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened};
+use crate::wcp::legs::{with_leg, HoldReason, Leg, Legs, Piece};
+use crate::wcp::prepare::Progress;
+use crate::wcp::schedule::{route_nodes, RobotSchedule, Schedule};
+use rayon::prelude::*;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Fractions of a hold tried first, together: the least one that clears is kept.
+const FRACTIONS: [f64; 6] = [0.0, 0.25, 0.5, 0.75, 0.9, 0.97];
+/// Bisections between the fraction kept and the one below it.
+const BISECTIONS: usize = 3;
+/// Passes over the robots at most: each shortens at least one hold, or is the last.
+const MAX_PASSES: usize = 16;
+/// Shortenings at most, in all: each costs a few pair checks of one robot.
+const MAX_STEPS: usize = 256;
+
+/// A hold of a robot's legs: the wait at the start of leg `leg`, or its piece `piece`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Hold {
+    leg: usize,
+    piece: Option<usize>,
+}
+
+impl Search<'_> {
+    /// Shortens the holds of every schedule that was the best when found: the answer is
+    /// the shortest of them all, shortened or not (one found earlier may shorten more).
+    pub(super) fn tighten_all(&mut self, progress: &dyn Progress) {
+        // The answer first: under a time limit, the one most likely to give the answer.
+        for id in self.incumbents.clone().into_iter().rev() {
+            if self.prepared.deadline.is_some_and(|d| Instant::now() >= d) {
+                break;
+            }
+            let Some(child) = self.tighten(id) else {
+                continue;
+            };
+            let best = self.best.expect("an incumbent is certified");
+            let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
+            progress.iteration(self.checked, m, None);
+            // Shortened holds bring robots home no later: the answer's own shortening wins
+            // a tie.
+            if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
+                self.best = Some(child);
+                progress.certified(m);
+            }
+        }
+    }
+
+    /// Shortens the holds of node `id`, a certified schedule: the shortened schedule, a
+    /// child of it checked as every node is, when it is certified.
+    fn tighten(&mut self, id: usize) -> Option<usize> {
+        let clock = Instant::now();
+        let node = &self.nodes[id];
+        let (routes, mut legs, mut robots) =
+            (node.routes.clone(), node.legs.clone(), node.robots.clone());
+        let mut shortened: Vec<Shortened> = Vec::new();
+        let mut which: Vec<(usize, Hold)> = Vec::new();
+        let mut steps = 0;
+        // Passes over the robots, the one that ends last first, until none can shorten a
+        // hold: a robot that goes sooner may leave room for the one that ends last.
+        let mut changed = true;
+        let mut passes = 0;
+        while changed && steps < MAX_STEPS && passes < MAX_PASSES {
+            passes += 1;
+            changed = false;
+            let mut order: Vec<usize> = (0..robots.len()).collect();
+            order.sort_by(|&a, &b| robots[b].end.total_cmp(&robots[a].end).then(a.cmp(&b)));
+            for r in order {
+                let Some((hold, before, after, s)) =
+                    self.shorten(id, r, &routes[r], &legs, &robots)
+                else {
+                    continue;
+                };
+                // A hold shortened again is one entry, from its first length to its last.
+                match which.iter().position(|&w| w == (r, hold)) {
+                    Some(k) => shortened[k].after = after,
+                    None => {
+                        let nodes = route_nodes(&routes[r]);
+                        which.push((r, hold));
+                        shortened.push(Shortened {
+                            robot: r,
+                            leg: hold.leg,
+                            nodes: (nodes[hold.leg], nodes[(hold.leg + 1).min(nodes.len() - 1)]),
+                            reason: reason(&legs, r, hold),
+                            before,
+                            after,
+                        });
+                    }
+                }
+                steps += 1;
+                legs = with_leg(&legs, r, hold.leg, held(&legs, r, hold, after));
+                robots[r] = Arc::new(s);
+                changed = true;
+                if steps >= MAX_STEPS {
+                    break;
+                }
+            }
+        }
+        self.times.scheduling += clock.elapsed();
+        if shortened.is_empty() {
+            return None;
+        }
+        let node = &self.nodes[id];
+        let makespan = robots.iter().map(|s| s.end).fold(0.0, f64::max);
+        let first = &shortened[0];
+        let child = self.add(Node {
+            routes,
+            conflicts: node.conflicts.clone(),
+            legs,
+            robots,
+            makespan,
+            parent: Some(id),
+            remedy: Some(Remedy::on(
+                first.robot,
+                first.leg,
+                first.nodes,
+                RemedyKind::Tighten { shortened },
+            )),
+            depth: node.depth + 1,
+            discrepancies: node.discrepancies,
+            deviated_at: node.deviated_at,
+            pending: None,
+            outcome: None,
+            prepared: node.prepared.clone(),
+        });
+        // Checked as a changed node is (its robots, then whole), but not counted among the
+        // search's schedules: like a remedy's own checks, it spends none of its budget.
+        let clock = Instant::now();
+        let schedule = Schedule::of(self.nodes[child].robots.clone());
+        let opts = &self.opts.check;
+        let free = [false, true].into_iter().all(|whole| {
+            let outcome = Outcome::of(self.cell, &schedule, opts, whole);
+            let status = outcome.status();
+            self.nodes[child].outcome = Some(outcome);
+            status == Status::Free
+        });
+        self.times.checking += clock.elapsed();
+        free.then_some(child)
+    }
+
+    /// The first hold of robot `r` (in time order) that can be shortened, with its length
+    /// before and after and the robot's new plan.
+    fn shorten(
+        &self,
+        id: usize,
+        r: usize,
+        route: &[usize],
+        legs: &Legs,
+        robots: &[Arc<RobotSchedule>],
+    ) -> Option<(Hold, f64, f64, RobotSchedule)> {
+        let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
+        let opts = &self.opts.check;
+        for hold in holds(legs, r) {
+            let before = duration(legs, r, hold);
+            // When the hold starts: the leg's first segment (its wait, or its first piece).
+            let Some(t0) = robots[r]
+                .segments
+                .iter()
+                .find(|g| g.leg == Some(hold.leg))
+                .map(|g| g.start)
+            else {
+                continue;
+            };
+            let attempt = |d: f64| -> Option<RobotSchedule> {
+                let changed = with_leg(legs, r, hold.leg, held(legs, r, hold, d));
+                let s = RobotSchedule::build(cell, r, route, &changed[r], moves).ok()?;
+                let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
+                    let t1 = s.end.max(robots[y].end);
+                    clears(cell, (r, &s), (y, &robots[y]), (t0, t1), opts)
+                });
+                clear.then_some(s)
+            };
+            let tries: Vec<Option<RobotSchedule>> =
+                FRACTIONS.par_iter().map(|f| attempt(f * before)).collect();
+            let Some(k) = tries.iter().position(Option::is_some) else {
+                continue;
+            };
+            let Some(s) = tries.into_iter().nth(k).flatten() else {
+                continue;
+            };
+            let mut best = (FRACTIONS[k] * before, s);
+            let mut below = match k {
+                0 => None,
+                _ => Some(FRACTIONS[k - 1] * before),
+            };
+            for _ in 0..BISECTIONS {
+                let Some(lo) = below else { break };
+                let mid = 0.5 * (lo + best.0);
+                match attempt(mid) {
+                    Some(s) => best = (mid, s),
+                    None => below = Some(mid),
+                }
+            }
+            return Some((hold, before, best.0, best.1));
+        }
+        None
+    }
+}
+
+/// Robot `r`'s holds with some length, in time order: each leg's wait, then its hold
+/// pieces.
+fn holds(legs: &Legs, r: usize) -> Vec<Hold> {
+    let mut out = Vec::new();
+    for (m, leg) in legs[r].iter().enumerate() {
+        if leg.wait > 0.0 {
+            out.push(Hold {
+                leg: m,
+                piece: None,
+            });
+        }
+        for (j, p) in leg.pieces.iter().flat_map(|p| p.iter()).enumerate() {
+            if matches!(p, Piece::Hold { duration, .. } if *duration > 0.0) {
+                out.push(Hold {
+                    leg: m,
+                    piece: Some(j),
+                });
+            }
+        }
+    }
+    out
+}
+
+fn reason(legs: &Legs, r: usize, hold: Hold) -> Option<HoldReason> {
+    let pieces = legs[r][hold.leg].pieces.as_ref()?;
+    match pieces[hold.piece?] {
+        Piece::Hold { reason, .. } => Some(reason),
+        Piece::Go { .. } => None,
+    }
+}
+
+fn duration(legs: &Legs, r: usize, hold: Hold) -> f64 {
+    let leg = &legs[r][hold.leg];
+    match hold.piece {
+        None => leg.wait,
+        Some(j) => leg.pieces.as_ref().map_or(0.0, |p| p[j].duration()),
+    }
+}
+
+/// Robot `r`'s leg of `hold` with the hold lasting `d`.
+fn held(legs: &Legs, r: usize, hold: Hold, d: f64) -> Leg {
+    let mut leg = legs[r][hold.leg].clone();
+    match hold.piece {
+        None => leg.wait = d,
+        Some(j) => {
+            let mut pieces = leg.pieces.as_deref().unwrap_or_default().to_vec();
+            if let Piece::Hold { duration, .. } = &mut pieces[j] {
+                *duration = d;
+            }
+            leg.pieces = Some(pieces.into());
+        }
+    }
+    leg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wcp::legs::default_legs;
+    use crate::wcp::options::SolveOptions;
+    use crate::wcp::prepare::{prepare, StageTimes};
+
+    /// X crosses from (-5, 0) to its task at (5, 0) and back; Y from (0, -5) to its task at
+    /// (0, 5), 9 s long, and back: they meet at the origin on the way out.
+    const CELL: &str = r#"{
+        "delta": 0.01,
+        "robots": [
+            {"name": "X", "home": [-5, 0, 0], "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5},
+            {"name": "Y", "home": [0, -5, 0], "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5}
+        ],
+        "tasks": [{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]},
+                  {"name": "y", "at": [0, 5, 0], "duration": 9.0, "robots": ["Y"]}]
+    }"#;
+
+    /// Y waiting 6 s at home is certified, but far longer than X's passing needs: the
+    /// answer has it wait no less than the least wait that clears and little more, and Y,
+    /// which ends last, home that much sooner.
+    #[test]
+    fn a_wait_longer_than_needed_is_shortened_to_what_clears() {
+        let cell = crate::cell::parse_cell(CELL, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let opts = SolveOptions::default();
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let mut search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
+        let routes = vec![vec![0], vec![1]];
+        let root = search.add_root(&routes).unwrap().unwrap();
+        search.check_all(&[root], &());
+        assert!(search.collision(root).is_some(), "they meet at the origin");
+        let waiting = |d: f64| {
+            let legs = with_leg(
+                &default_legs(2),
+                1,
+                0,
+                Leg {
+                    wait: d,
+                    ..Leg::DEFAULT
+                },
+            );
+            let y = RobotSchedule::build(&cell, 1, &routes[1], &legs[1], &prepared.moves);
+            (legs, y.unwrap())
+        };
+        let (legs, y) = waiting(6.0);
+        let mut robots = search.nodes[root].robots.clone();
+        robots[1] = Arc::new(y);
+        let makespan = robots[1].end;
+        assert!(robots[0].end < makespan, "Y ends last");
+        let waits = search.add(Node {
+            routes: Arc::new(routes.clone()),
+            conflicts: Arc::new(Vec::new()),
+            legs,
+            robots: robots.clone(),
+            makespan,
+            parent: Some(root),
+            remedy: None,
+            depth: 1,
+            discrepancies: 0,
+            deviated_at: 0,
+            pending: None,
+            outcome: None,
+            prepared: None,
+        });
+        search.check_all(&[waits], &());
+        assert_eq!(search.best, Some(waits));
+        search.tighten_all(&());
+        let answer = search.best.unwrap();
+        assert_ne!(answer, waits, "shortened");
+        let node = &search.nodes[answer];
+        assert_eq!(node.parent, Some(waits));
+        assert_eq!(node.outcome.as_ref().unwrap().status(), Status::Free);
+        assert!(node.outcome.as_ref().unwrap().whole);
+        let Some(RemedyKind::Tighten { shortened }) = node.remedy.as_ref().map(|r| &r.kind) else {
+            panic!("{:?}", node.remedy);
+        };
+        assert_eq!(shortened.len(), 1);
+        let s = shortened[0];
+        assert_eq!((s.robot, s.leg, s.reason, s.before), (1, 0, None, 6.0));
+        assert_eq!(node.legs[1][0].wait, s.after);
+        // Y, and the makespan, end exactly that much sooner.
+        assert!((node.makespan - (makespan - (6.0 - s.after))).abs() < 1e-9);
+        // The least wait that clears, to a hundredth: the answer waits no less, and the
+        // bisections leave little more.
+        let clear = |d: f64| {
+            let (_, y) = waiting(d);
+            clears(&cell, (1, &y), (0, &robots[0]), (0.0, 40.0), &opts.check)
+        };
+        let least = (0..600)
+            .map(|k| k as f64 * 0.01)
+            .find(|&d| clear(d))
+            .unwrap();
+        assert!(least > 0.5, "X is in the way for a while: {least}");
+        assert!(
+            s.after >= least - 0.01 && s.after < least + 6.0 * 0.25 / 8.0 + 0.01,
+            "waits {}, least {least}",
+            s.after
+        );
+    }
+}
