@@ -37,7 +37,7 @@ pub use configurations::{task_configurations, Assignment, Configuration, Configu
 pub use evaluate::{evaluate, Evaluated};
 pub use feedback::{
     describe, place, solve, uncertified, unresolved, Iteration, Remedy, RemedyKind, RemedyLeg,
-    Shortened, Solved, TunedHold, HEMMED_IN,
+    Shortened, Shortening, Solved, TunedHold, HEMMED_IN,
 };
 pub use graph::{
     check_reachable, GraphFile, GraphFileArc, GraphFileNode, NodeKind, TravelArc, WcpGraph,

@@ -1,7 +1,7 @@
 //! The remedies of the feedback loop in the result's terms: their names, what each changed
 //! (the JSON of a round) and a sentence for the summary.
 
-use super::feedback::{Remedy, RemedyKind};
+use super::feedback::{Remedy, RemedyKind, Shortening};
 use super::legs::{HoldReason, Legs, Piece};
 use super::schedule::{route_nodes, Activity};
 use crate::cell::Cell;
@@ -50,10 +50,10 @@ pub struct ShortenedJson {
     /// Its move: the wait before it, or a hold on its way (a pause, a stay at a parking
     /// pose).
     pub on: String,
-    /// `wait` (before the move), `pause` (on its way) or `park` (at a parking pose on its
-    /// way).
+    /// `wait` (before the move), `pause` (on its way), `park` (at a parking pose on its
+    /// way) or `slow` (a motion of it run slower).
     pub kind: &'static str,
-    /// How long it was.
+    /// How long it was: seconds, or for `slow` how many times slower than planned.
     pub before: f64,
     /// How long it is.
     pub after: f64,
@@ -329,10 +329,11 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
                 .map(|h| ShortenedJson {
                     robot: cell.robots[h.robot].name.clone(),
                     on: move_name(cell, h.robot, h.nodes),
-                    kind: match h.reason {
-                        None => "wait",
-                        Some(HoldReason::Pause) => "pause",
-                        Some(HoldReason::Park) => "park",
+                    kind: match h.kind {
+                        Shortening::Wait => "wait",
+                        Shortening::Pause => "pause",
+                        Shortening::Park => "park",
+                        Shortening::Slow => "slow",
                     },
                     before: h.before,
                     after: h.after,
@@ -439,14 +440,20 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
                         move_name(cell, h.robot, h.nodes),
                     );
                     let (after, before) = (seconds(h.after), seconds(h.before));
-                    match h.reason {
-                        None => format!("{r} waits {after} (was {before}) before its {on}"),
-                        Some(HoldReason::Pause) => {
+                    match h.kind {
+                        Shortening::Wait => {
+                            format!("{r} waits {after} (was {before}) before its {on}")
+                        }
+                        Shortening::Pause => {
                             format!("{r} pauses {after} (was {before}) on its {on}")
                         }
-                        Some(HoldReason::Park) => {
+                        Shortening::Park => {
                             format!("{r} stays aside {after} (was {before}) on its {on}")
                         }
+                        Shortening::Slow => format!(
+                            "{r} makes its {on} {:.3} times slower (was {:.3})",
+                            h.after, h.before
+                        ),
                     }
                 })
                 .collect();

@@ -16,7 +16,7 @@ mod search;
 
 pub use outcome::{
     describe, place, uncertified, unresolved, Iteration, Remedy, RemedyKind, RemedyLeg, Shortened,
-    Solved, TunedHold, HEMMED_IN,
+    Shortening, Solved, TunedHold, HEMMED_IN,
 };
 
 use super::choose::choose_configurations;

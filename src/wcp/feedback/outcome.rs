@@ -7,7 +7,7 @@ use crate::geometry::Vec2;
 use crate::geometry::{closest_features, ConvexPolygon, Posed, WalkTolerances};
 use crate::motion::Pose;
 use crate::wcp::configurations::Assignment;
-use crate::wcp::legs::{HoldReason, Legs};
+use crate::wcp::legs::Legs;
 use crate::wcp::moves::MoveStore;
 use crate::wcp::prepare::StageTimes;
 use crate::wcp::schedule::{Activity, BuildError, Collision, Delay, Schedule};
@@ -120,7 +120,7 @@ pub enum RemedyKind {
     },
 }
 
-/// A hold of the answer shortened ([`RemedyKind::Tighten`]).
+/// A wait, hold or slowed motion of the answer shortened ([`RemedyKind::Tighten`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shortened {
     /// The robot.
@@ -129,13 +129,25 @@ pub struct Shortened {
     pub leg: usize,
     /// The leg's nodes.
     pub nodes: (usize, usize),
-    /// Why the robot holds on the leg's way (a pause, a stay at a parking pose); `None`
-    /// for the wait at the leg's start.
-    pub reason: Option<HoldReason>,
-    /// How long it was.
+    /// What was shortened.
+    pub kind: Shortening,
+    /// How long it was: seconds, or for [`Shortening::Slow`] how many times slower.
     pub before: f64,
     /// How long it is.
     pub after: f64,
+}
+
+/// What a [`Shortened`] shortened.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shortening {
+    /// The wait at the leg's start.
+    Wait,
+    /// A pause on the leg's way.
+    Pause,
+    /// A stay at a parking pose on the leg's way.
+    Park,
+    /// A motion of the leg run slower than planned.
+    Slow,
 }
 
 /// A stop of a robot on a move timed with another's ([`RemedyKind::Tune`]).

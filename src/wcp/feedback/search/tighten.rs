@@ -1,20 +1,21 @@
-//! The answer's holds, shortened as far as the other robots allow.
+//! The answer's slack, shortened as far as the other robots allow.
 //!
 //! Each remedy makes the least change that clears one collision, given the schedule it
 //! answers; changes made later on the same branch move the other robots, so an early wait
 //! may no longer need all of its length. Once the search ends, every schedule that was the
-//! best when found has its waits and holds shortened, robot by robot (the one that ends
-//! last first, since a robot that goes sooner may leave room for it), in passes until none
-//! shortens: a robot's first hold, in time order, that can be shortened takes the least of
-//! a few fractions of its length, then bisected, after which the checker proves that robot
-//! clear of every other from the hold on. The answer is the shortest of all of them,
-//! shortened or not: one found earlier may shorten further. Paths are kept: only the times
-//! at which a robot rests where it already rests change, so the fixtures need no new check
-//! (the result is checked whole anyway).
+//! best when found has its slack shortened: waits, holds (pauses, stays at parking poses)
+//! and motions run slower than planned. Robot by robot (the one that ends last first, since
+//! a robot that goes sooner may leave room for it), in passes until none shortens, a
+//! robot's first slack in time order that can be shortened is cut to the least of a few
+//! fractions of it, then bisected, after which the checker proves that robot clear of
+//! every other from the leg on. The answer is the shortest of all of them, shortened or
+//! not: one found earlier may shorten further. Paths are kept: only when a robot rests
+//! where it already rests, and how fast it runs its path, change, so the fixtures need no
+//! new check (the result is checked whole anyway).
 
 use super::{Node, Outcome, Search, Status};
 use crate::wcp::feedback::clearing::clears;
-use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened};
+use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened, Shortening};
 use crate::wcp::legs::{with_leg, HoldReason, Leg, Legs, Piece};
 use crate::wcp::prepare::Progress;
 use crate::wcp::schedule::{route_nodes, RobotSchedule, Schedule};
@@ -22,18 +23,19 @@ use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Fractions of a hold tried first, together: the least one that clears is kept.
+/// Fractions of a slack tried first, together: the least one that clears is kept.
 const FRACTIONS: [f64; 6] = [0.0, 0.25, 0.5, 0.75, 0.9, 0.97];
 /// Bisections between the fraction kept and the one below it.
 const BISECTIONS: usize = 3;
-/// Passes over the robots at most: each shortens at least one hold, or is the last.
+/// Passes over the robots at most: each shortens some slack, or is the last.
 const MAX_PASSES: usize = 16;
 /// Shortenings at most, in all: each costs a few pair checks of one robot.
 const MAX_STEPS: usize = 256;
 
-/// A hold of a robot's legs: the wait at the start of leg `leg`, or its piece `piece`.
+/// Slack in a robot's legs: the wait at the start of leg `leg`, or its piece `piece` (a
+/// hold, or a motion run slower than planned).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Hold {
+struct Slack {
     leg: usize,
     piece: Option<usize>,
 }
@@ -70,10 +72,10 @@ impl Search<'_> {
         let (routes, mut legs, mut robots) =
             (node.routes.clone(), node.legs.clone(), node.robots.clone());
         let mut shortened: Vec<Shortened> = Vec::new();
-        let mut which: Vec<(usize, Hold)> = Vec::new();
+        let mut which: Vec<(usize, Slack)> = Vec::new();
         let mut steps = 0;
-        // Passes over the robots, the one that ends last first, until none can shorten a
-        // hold: a robot that goes sooner may leave room for the one that ends last.
+        // Passes over the robots, the one that ends last first, until none can shorten its
+        // slack: a robot that goes sooner may leave room for the one that ends last.
         let mut changed = true;
         let mut passes = 0;
         while changed && steps < MAX_STEPS && passes < MAX_PASSES {
@@ -82,29 +84,39 @@ impl Search<'_> {
             let mut order: Vec<usize> = (0..robots.len()).collect();
             order.sort_by(|&a, &b| robots[b].end.total_cmp(&robots[a].end).then(a.cmp(&b)));
             for r in order {
-                let Some((hold, before, after, s)) =
+                let Some((slack, before, after, s)) =
                     self.shorten(id, r, &routes[r], &legs, &robots)
                 else {
                     continue;
                 };
-                // A hold shortened again is one entry, from its first length to its last.
-                match which.iter().position(|&w| w == (r, hold)) {
+                // Slack shortened again is one entry, from its first length to its last.
+                let kind = kind(&legs, r, slack);
+                let leg = with_excess(&legs, r, slack, after);
+                // Reported as the robot does it: a slowed motion by its factor.
+                let (before, after) = match kind {
+                    Shortening::Slow => (1.0 + before, 1.0 + after),
+                    _ => (before, after),
+                };
+                match which.iter().position(|&w| w == (r, slack)) {
                     Some(k) => shortened[k].after = after,
                     None => {
                         let nodes = route_nodes(&routes[r]);
-                        which.push((r, hold));
+                        which.push((r, slack));
                         shortened.push(Shortened {
                             robot: r,
-                            leg: hold.leg,
-                            nodes: (nodes[hold.leg], nodes[(hold.leg + 1).min(nodes.len() - 1)]),
-                            reason: reason(&legs, r, hold),
+                            leg: slack.leg,
+                            nodes: (
+                                nodes[slack.leg],
+                                nodes[(slack.leg + 1).min(nodes.len() - 1)],
+                            ),
+                            kind,
                             before,
                             after,
                         });
                     }
                 }
                 steps += 1;
-                legs = with_leg(&legs, r, hold.leg, held(&legs, r, hold, after));
+                legs = with_leg(&legs, r, slack.leg, leg);
                 robots[r] = Arc::new(s);
                 changed = true;
                 if steps >= MAX_STEPS {
@@ -154,8 +166,8 @@ impl Search<'_> {
         free.then_some(child)
     }
 
-    /// The first hold of robot `r` (in time order) that can be shortened, with its length
-    /// before and after and the robot's new plan.
+    /// The first slack of robot `r` (in time order) that can be shortened, with its
+    /// [`excess`] before and after and the robot's new plan.
     fn shorten(
         &self,
         id: usize,
@@ -163,22 +175,22 @@ impl Search<'_> {
         route: &[usize],
         legs: &Legs,
         robots: &[Arc<RobotSchedule>],
-    ) -> Option<(Hold, f64, f64, RobotSchedule)> {
+    ) -> Option<(Slack, f64, f64, RobotSchedule)> {
         let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
         let opts = &self.opts.check;
-        for hold in holds(legs, r) {
-            let before = duration(legs, r, hold);
-            // When the hold starts: the leg's first segment (its wait, or its first piece).
+        for slack in slacks(legs, r) {
+            let before = excess(legs, r, slack);
+            // When the leg starts: its first segment (its wait, or its first piece).
             let Some(t0) = robots[r]
                 .segments
                 .iter()
-                .find(|g| g.leg == Some(hold.leg))
+                .find(|g| g.leg == Some(slack.leg))
                 .map(|g| g.start)
             else {
                 continue;
             };
             let attempt = |d: f64| -> Option<RobotSchedule> {
-                let changed = with_leg(legs, r, hold.leg, held(legs, r, hold, d));
+                let changed = with_leg(legs, r, slack.leg, with_excess(legs, r, slack, d));
                 let s = RobotSchedule::build(cell, r, route, &changed[r], moves).ok()?;
                 let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
                     let t1 = s.end.max(robots[y].end);
@@ -207,26 +219,30 @@ impl Search<'_> {
                     None => below = Some(mid),
                 }
             }
-            return Some((hold, before, best.0, best.1));
+            return Some((slack, before, best.0, best.1));
         }
         None
     }
 }
 
-/// Robot `r`'s holds with some length, in time order: each leg's wait, then its hold
-/// pieces.
-fn holds(legs: &Legs, r: usize) -> Vec<Hold> {
+/// Robot `r`'s slack, in time order: each leg's wait, then its holds and its motions run
+/// slower than planned.
+fn slacks(legs: &Legs, r: usize) -> Vec<Slack> {
     let mut out = Vec::new();
     for (m, leg) in legs[r].iter().enumerate() {
         if leg.wait > 0.0 {
-            out.push(Hold {
+            out.push(Slack {
                 leg: m,
                 piece: None,
             });
         }
         for (j, p) in leg.pieces.iter().flat_map(|p| p.iter()).enumerate() {
-            if matches!(p, Piece::Hold { duration, .. } if *duration > 0.0) {
-                out.push(Hold {
+            let slack = match p {
+                Piece::Hold { duration, .. } => *duration > 0.0,
+                Piece::Go { scale, .. } => *scale > 1.0,
+            };
+            if slack {
+                out.push(Slack {
                     leg: m,
                     piece: Some(j),
                 });
@@ -236,31 +252,46 @@ fn holds(legs: &Legs, r: usize) -> Vec<Hold> {
     out
 }
 
-fn reason(legs: &Legs, r: usize, hold: Hold) -> Option<HoldReason> {
-    let pieces = legs[r][hold.leg].pieces.as_ref()?;
-    match pieces[hold.piece?] {
-        Piece::Hold { reason, .. } => Some(reason),
-        Piece::Go { .. } => None,
+/// What the slack is.
+fn kind(legs: &Legs, r: usize, slack: Slack) -> Shortening {
+    let Some(j) = slack.piece else {
+        return Shortening::Wait;
+    };
+    match legs[r][slack.leg].pieces.as_ref().map(|p| &p[j]) {
+        Some(Piece::Hold {
+            reason: HoldReason::Pause,
+            ..
+        }) => Shortening::Pause,
+        Some(Piece::Hold {
+            reason: HoldReason::Park,
+            ..
+        }) => Shortening::Park,
+        Some(Piece::Go { .. }) | None => Shortening::Slow,
     }
 }
 
-fn duration(legs: &Legs, r: usize, hold: Hold) -> f64 {
-    let leg = &legs[r][hold.leg];
-    match hold.piece {
-        None => leg.wait,
-        Some(j) => leg.pieces.as_ref().map_or(0.0, |p| p[j].duration()),
+/// How much slack: a wait's or a hold's seconds; a slowed motion's stretch beyond 1.
+fn excess(legs: &Legs, r: usize, slack: Slack) -> f64 {
+    let leg = &legs[r][slack.leg];
+    match (slack.piece, leg.pieces.as_deref()) {
+        (None, _) | (Some(_), None) => leg.wait,
+        (Some(j), Some(pieces)) => match &pieces[j] {
+            Piece::Hold { duration, .. } => *duration,
+            Piece::Go { scale, .. } => scale - 1.0,
+        },
     }
 }
 
-/// Robot `r`'s leg of `hold` with the hold lasting `d`.
-fn held(legs: &Legs, r: usize, hold: Hold, d: f64) -> Leg {
-    let mut leg = legs[r][hold.leg].clone();
-    match hold.piece {
-        None => leg.wait = d,
+/// Robot `r`'s leg with `slack` cut to `e` (an [`excess`]).
+fn with_excess(legs: &Legs, r: usize, slack: Slack, e: f64) -> Leg {
+    let mut leg = legs[r][slack.leg].clone();
+    match slack.piece {
+        None => leg.wait = e,
         Some(j) => {
             let mut pieces = leg.pieces.as_deref().unwrap_or_default().to_vec();
-            if let Piece::Hold { duration, .. } = &mut pieces[j] {
-                *duration = d;
+            match &mut pieces[j] {
+                Piece::Hold { duration, .. } => *duration = e,
+                Piece::Go { scale, .. } => *scale = 1.0 + e,
             }
             leg.pieces = Some(pieces.into());
         }
@@ -272,6 +303,7 @@ fn held(legs: &Legs, r: usize, hold: Hold, d: f64) -> Leg {
 mod tests {
     use super::*;
     use crate::wcp::legs::default_legs;
+    use crate::wcp::moves::MoveStore;
     use crate::wcp::options::SolveOptions;
     use crate::wcp::prepare::{prepare, StageTimes};
 
@@ -289,11 +321,17 @@ mod tests {
                   {"name": "y", "at": [0, 5, 0], "duration": 9.0, "robots": ["Y"]}]
     }"#;
 
-    /// Y waiting 6 s at home is certified, but far longer than X's passing needs: the
-    /// answer has it wait no less than the least wait that clears and little more, and Y,
-    /// which ends last, home that much sooner.
-    #[test]
-    fn a_wait_longer_than_needed_is_shortened_to_what_clears() {
+    /// What shortening makes of Y's first leg `leg` (certified, Y ending last): the one
+    /// entry shortened, the makespan before and after, Y's leg after, and whether the
+    /// checker proves Y with its first leg `leg` clear of X.
+    struct Tightened {
+        shortened: Shortened,
+        makespans: (f64, f64),
+        leg: Leg,
+        clear: Box<dyn Fn(&Leg) -> bool>,
+    }
+
+    fn tightened(leg: impl Fn(&MoveStore) -> Leg) -> Tightened {
         let cell = crate::cell::parse_cell(CELL, "test.json".as_ref())
             .unwrap()
             .cell;
@@ -304,25 +342,13 @@ mod tests {
         let root = search.add_root(&routes).unwrap().unwrap();
         search.check_all(&[root], &());
         assert!(search.collision(root).is_some(), "they meet at the origin");
-        let waiting = |d: f64| {
-            let legs = with_leg(
-                &default_legs(2),
-                1,
-                0,
-                Leg {
-                    wait: d,
-                    ..Leg::DEFAULT
-                },
-            );
-            let y = RobotSchedule::build(&cell, 1, &routes[1], &legs[1], &prepared.moves);
-            (legs, y.unwrap())
-        };
-        let (legs, y) = waiting(6.0);
+        let legs = with_leg(&default_legs(2), 1, 0, leg(&prepared.moves));
+        let y = RobotSchedule::build(&cell, 1, &routes[1], &legs[1], &prepared.moves).unwrap();
         let mut robots = search.nodes[root].robots.clone();
         robots[1] = Arc::new(y);
         let makespan = robots[1].end;
         assert!(robots[0].end < makespan, "Y ends last");
-        let waits = search.add(Node {
+        let yields = search.add(Node {
             routes: Arc::new(routes.clone()),
             conflicts: Arc::new(Vec::new()),
             legs,
@@ -337,38 +363,110 @@ mod tests {
             outcome: None,
             prepared: None,
         });
-        search.check_all(&[waits], &());
-        assert_eq!(search.best, Some(waits));
+        search.check_all(&[yields], &());
+        assert_eq!(search.best, Some(yields));
         search.tighten_all(&());
         let answer = search.best.unwrap();
-        assert_ne!(answer, waits, "shortened");
+        assert_ne!(answer, yields, "shortened");
         let node = &search.nodes[answer];
-        assert_eq!(node.parent, Some(waits));
-        assert_eq!(node.outcome.as_ref().unwrap().status(), Status::Free);
-        assert!(node.outcome.as_ref().unwrap().whole);
+        assert_eq!(node.parent, Some(yields));
+        let outcome = node.outcome.as_ref().unwrap();
+        assert!(outcome.whole && outcome.status() == Status::Free);
         let Some(RemedyKind::Tighten { shortened }) = node.remedy.as_ref().map(|r| &r.kind) else {
             panic!("{:?}", node.remedy);
         };
         assert_eq!(shortened.len(), 1);
-        let s = shortened[0];
-        assert_eq!((s.robot, s.leg, s.reason, s.before), (1, 0, None, 6.0));
-        assert_eq!(node.legs[1][0].wait, s.after);
+        let (after, leg) = (node.makespan, node.legs[1][0].clone());
+        let shortened = shortened[0];
+        let x = robots[0].clone();
+        let clear = Box::new(move |leg: &Leg| {
+            let legs = with_leg(&default_legs(2), 1, 0, leg.clone());
+            let y = RobotSchedule::build(&cell, 1, &[1], &legs[1], &prepared.moves).unwrap();
+            clears(&cell, (1, &y), (0, &x), (0.0, 60.0), &opts.check)
+        });
+        Tightened {
+            shortened,
+            makespans: (makespan, after),
+            leg,
+            clear,
+        }
+    }
+
+    /// Y waiting 6 s at home is certified, but far longer than X's passing needs: the
+    /// answer has it wait no less than the least wait that clears and little more, and Y,
+    /// which ends last, home that much sooner.
+    #[test]
+    fn a_wait_longer_than_needed_is_shortened_to_what_clears() {
+        let waits = |d: f64| Leg {
+            wait: d,
+            ..Leg::DEFAULT
+        };
+        let t = tightened(|_| waits(6.0));
+        let s = t.shortened;
+        assert_eq!(
+            (s.robot, s.leg, s.kind, s.before),
+            (1, 0, Shortening::Wait, 6.0)
+        );
+        assert_eq!(t.leg.wait, s.after);
         // Y, and the makespan, end exactly that much sooner.
-        assert!((node.makespan - (makespan - (6.0 - s.after))).abs() < 1e-9);
+        assert!((t.makespans.1 - (t.makespans.0 - (6.0 - s.after))).abs() < 1e-9);
         // The least wait that clears, to a hundredth: the answer waits no less, and the
         // bisections leave little more.
-        let clear = |d: f64| {
-            let (_, y) = waiting(d);
-            clears(&cell, (1, &y), (0, &robots[0]), (0.0, 40.0), &opts.check)
-        };
         let least = (0..600)
             .map(|k| k as f64 * 0.01)
-            .find(|&d| clear(d))
-            .unwrap();
+            .find(|&d| (t.clear)(&waits(d)));
+        let least = least.unwrap();
         assert!(least > 0.5, "X is in the way for a while: {least}");
         assert!(
             s.after >= least - 0.01 && s.after < least + 6.0 * 0.25 / 8.0 + 0.01,
             "waits {}, least {least}",
+            s.after
+        );
+    }
+
+    /// Y making its way out 1.4 times slower is certified (3 times slower, it would meet X
+    /// on its way back), but slower than X's passing needs:
+    /// the answer runs it no faster than the fastest that clears, and little slower.
+    #[test]
+    fn a_motion_slower_than_needed_is_sped_up_to_what_clears() {
+        let slowed = |moves: &MoveStore, k: f64| {
+            let planned = moves.get(1, 0, 2).unwrap();
+            let motion = moves.timed(1, &planned.primitives);
+            Leg {
+                wait: 0.0,
+                pieces: Some(vec![Piece::Go { motion, scale: k }].into()),
+            }
+        };
+        let t = tightened(|moves| slowed(moves, 1.4));
+        let s = t.shortened;
+        assert_eq!(
+            (s.robot, s.leg, s.kind, s.before),
+            (1, 0, Shortening::Slow, 1.4)
+        );
+        let Some([Piece::Go { scale, motion }]) = t.leg.pieces.as_deref() else {
+            panic!("{:?}", t.leg);
+        };
+        assert_eq!(*scale, s.after);
+        assert!((t.makespans.1 - (t.makespans.0 - (1.4 - s.after) * motion.duration)).abs() < 1e-6);
+        // The least factor that clears, to a hundredth.
+        let least = (100..140).map(|k| k as f64 * 0.01).find(|&k| {
+            let leg = Leg {
+                wait: 0.0,
+                pieces: Some(
+                    vec![Piece::Go {
+                        motion: motion.clone(),
+                        scale: k,
+                    }]
+                    .into(),
+                ),
+            };
+            (t.clear)(&leg)
+        });
+        let least = least.unwrap();
+        assert!(least > 1.05, "X is in the way: {least}");
+        assert!(
+            s.after >= least - 0.01 && s.after < least + 0.4 * 0.25 / 8.0 + 0.01,
+            "{} times slower, least {least}",
             s.after
         );
     }
