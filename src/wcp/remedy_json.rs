@@ -30,19 +30,19 @@ pub enum ChangeJson {
     Tune(TuneJson),
     /// Every robot of a loop round it together.
     Convoy(ConvoyJson),
-    /// The answer's waits and holds shortened.
+    /// A certified schedule's slack shortened.
     Tighten(TightenJson),
 }
 
-/// The answer's waits and holds shortened as far as the other robots allow, in the order
-/// they were.
+/// A certified schedule's slack shortened as far as the other robots allow, in the order
+/// each was first shortened.
 #[derive(Serialize)]
 pub struct TightenJson {
     /// Each one shortened.
     pub shortened: Vec<ShortenedJson>,
 }
 
-/// A wait or hold shortened.
+/// A wait, hold or slowed motion shortened.
 #[derive(Serialize)]
 pub struct ShortenedJson {
     /// The robot.

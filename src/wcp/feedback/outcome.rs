@@ -112,10 +112,10 @@ pub enum RemedyKind {
         /// The loop, a closed path of G.
         loop_path: Vec<Vec2>,
     },
-    /// The answer's waits and holds shortened as far as the other robots allow (no
-    /// collision answered: the last round, on a certified schedule).
+    /// A certified schedule's slack (waits, holds, slowed motions) shortened as far as the
+    /// other robots allow (no collision answered: the last round but one).
     Tighten {
-        /// Each hold shortened, in the order it was.
+        /// Each one shortened, in the order it first was.
         shortened: Vec<Shortened>,
     },
 }

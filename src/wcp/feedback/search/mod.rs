@@ -25,11 +25,11 @@
 //! collision it answers); then it dives again from each other choice, the choices near the
 //! root first, where a poor choice costs most. Nodes that cannot beat the best certified
 //! makespan are dropped; when none is left, the answer is the best the remedies can give.
-//! When the search ends, every schedule that was the best when found has its waits and
-//! holds shortened as far as the other robots allow (`tighten.rs`), and the answer is the
-//! shortest of them. Ties go to the node made first, so that the result is the same on every run and on any
-//! number of threads: children are made and checked in parallel and collected in a fixed
-//! order.
+//! When the search ends, every schedule that was the best when found has its slack (waits,
+//! holds, slowed motions) shortened as far as the other robots allow (`tighten.rs`), and the
+//! answer is the shortest of them. Ties go to the node made first, so that the result is
+//! the same on every run and on any number of threads: children are made and checked in
+//! parallel and collected in a fixed order.
 //!
 //! The budgets are a number of schedules checked and a time limit (a safety stop: a run
 //! that reaches it may differ from run to run). Without any certified schedule, the search

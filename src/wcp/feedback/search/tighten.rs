@@ -41,7 +41,7 @@ struct Slack {
 }
 
 impl Search<'_> {
-    /// Shortens the holds of every schedule that was the best when found: the answer is
+    /// Shortens the slack of every schedule that was the best when found: the answer is
     /// the shortest of them all, shortened or not (one found earlier may shorten more).
     pub(super) fn tighten_all(&mut self, progress: &dyn Progress) {
         // The answer first: under a time limit, the one most likely to give the answer.
@@ -55,7 +55,7 @@ impl Search<'_> {
             let best = self.best.expect("an incumbent is certified");
             let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
             progress.iteration(self.checked, m, None);
-            // Shortened holds bring robots home no later: the answer's own shortening wins
+            // Shortened slack brings robots home no later: the answer's own shortening wins
             // a tie.
             if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
                 self.best = Some(child);
@@ -64,8 +64,8 @@ impl Search<'_> {
         }
     }
 
-    /// Shortens the holds of node `id`, a certified schedule: the shortened schedule, a
-    /// child of it checked as every node is, when it is certified.
+    /// Shortens the slack of node `id`, a certified schedule: the shortened schedule, a
+    /// child of it checked as a changed node is, when it is certified.
     fn tighten(&mut self, id: usize) -> Option<usize> {
         let clock = Instant::now();
         let node = &self.nodes[id];
