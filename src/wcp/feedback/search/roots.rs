@@ -58,7 +58,7 @@ impl Search<'_> {
         blind: &mut Solution,
         progress: &dyn Progress,
     ) -> Result<bool, InputError> {
-        let Some(deadline) = self.prepared.deadline else {
+        let Some(deadline) = self.deadline() else {
             return Ok(false);
         };
         if self.opts.sequencer.effort <= 1 || self.stalled() || Instant::now() >= deadline {

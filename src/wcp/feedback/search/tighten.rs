@@ -78,7 +78,12 @@ impl Search<'_> {
         // slack: a robot that goes sooner may leave room for the one that ends last.
         let mut changed = true;
         let mut passes = 0;
+        let deadline = self.prepared.deadline;
         while changed && steps < MAX_STEPS && passes < MAX_PASSES {
+            // Under a time limit, what was shortened by then.
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                break;
+            }
             passes += 1;
             changed = false;
             let mut order: Vec<usize> = (0..robots.len()).collect();
@@ -390,6 +395,27 @@ mod tests {
             leg,
             clear,
         }
+    }
+
+    /// Under a time limit the search stops a share of it early, so that its answer is
+    /// shortened within the limit.
+    #[test]
+    fn the_search_leaves_time_for_the_shortening() {
+        let cell = crate::cell::parse_cell(CELL, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let opts = SolveOptions {
+            time_limit: Some(std::time::Duration::from_secs(2)),
+            ..SolveOptions::default()
+        };
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
+        let (end, limit) = (search.deadline().unwrap(), prepared.deadline.unwrap());
+        assert_eq!(limit - end, std::time::Duration::from_millis(100));
+        let opts = SolveOptions::default();
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
+        assert_eq!(search.deadline(), None);
     }
 
     /// Y waiting 6 s at home is certified, but far longer than X's passing needs: the
