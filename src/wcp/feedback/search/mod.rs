@@ -86,6 +86,34 @@ struct Node {
     prepared: Option<Arc<Prepared>>,
 }
 
+#[cfg(test)]
+impl Node {
+    /// A child of `parent` with the routes, legs and timed robots given, made by hand (no
+    /// remedy, no discrepancy): what the unit tests check and shorten.
+    fn by_hand(
+        parent: usize,
+        routes: &[Vec<usize>],
+        legs: Legs,
+        robots: Vec<Arc<RobotSchedule>>,
+    ) -> Node {
+        Node {
+            routes: Arc::new(routes.to_vec()),
+            conflicts: Arc::new(Vec::new()),
+            legs,
+            makespan: robots.iter().map(|s| s.end).fold(0.0, f64::max),
+            robots,
+            parent: Some(parent),
+            remedy: None,
+            depth: 1,
+            discrepancies: 0,
+            deviated_at: 0,
+            pending: None,
+            outcome: None,
+            prepared: None,
+        }
+    }
+}
+
 /// A child made only when the search takes it.
 enum Pending {
     /// The parent re-sequenced with this conflict added.

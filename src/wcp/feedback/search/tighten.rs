@@ -307,6 +307,7 @@ fn with_excess(legs: &Legs, r: usize, slack: Slack, e: f64) -> Leg {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::planning::PlannedMove;
     use crate::wcp::legs::default_legs;
     use crate::wcp::moves::MoveStore;
     use crate::wcp::options::SolveOptions;
@@ -353,21 +354,7 @@ mod tests {
         robots[1] = Arc::new(y);
         let makespan = robots[1].end;
         assert!(robots[0].end < makespan, "Y ends last");
-        let yields = search.add(Node {
-            routes: Arc::new(routes.clone()),
-            conflicts: Arc::new(Vec::new()),
-            legs,
-            robots: robots.clone(),
-            makespan,
-            parent: Some(root),
-            remedy: None,
-            depth: 1,
-            discrepancies: 0,
-            deviated_at: 0,
-            pending: None,
-            outcome: None,
-            prepared: None,
-        });
+        let yields = search.add(Node::by_hand(root, &routes, legs, robots.clone()));
         search.check_all(&[yields], &());
         assert_eq!(search.best, Some(yields));
         search.tighten_all(&());
@@ -455,15 +442,15 @@ mod tests {
     /// the answer runs it no faster than the fastest that clears, and little slower.
     #[test]
     fn a_motion_slower_than_needed_is_sped_up_to_what_clears() {
-        let slowed = |moves: &MoveStore, k: f64| {
-            let planned = moves.get(1, 0, 2).unwrap();
-            let motion = moves.timed(1, &planned.primitives);
-            Leg {
-                wait: 0.0,
-                pieces: Some(vec![Piece::Go { motion, scale: k }].into()),
-            }
+        let slowed = |motion: Arc<PlannedMove>, scale: f64| Leg {
+            wait: 0.0,
+            pieces: Some(vec![Piece::Go { motion, scale }].into()),
         };
-        let t = tightened(|moves| slowed(moves, 1.4));
+        let planned = |moves: &MoveStore| {
+            let m = moves.get(1, 0, 2).unwrap();
+            moves.timed(1, &m.primitives)
+        };
+        let t = tightened(|moves| slowed(planned(moves), 1.4));
         let s = t.shortened;
         assert_eq!(
             (s.robot, s.leg, s.kind, s.before),
@@ -475,19 +462,9 @@ mod tests {
         assert_eq!(*scale, s.after);
         assert!((t.makespans.1 - (t.makespans.0 - (1.4 - s.after) * motion.duration)).abs() < 1e-6);
         // The least factor that clears, to a hundredth.
-        let least = (100..140).map(|k| k as f64 * 0.01).find(|&k| {
-            let leg = Leg {
-                wait: 0.0,
-                pieces: Some(
-                    vec![Piece::Go {
-                        motion: motion.clone(),
-                        scale: k,
-                    }]
-                    .into(),
-                ),
-            };
-            (t.clear)(&leg)
-        });
+        let least = (100..140)
+            .map(|k| k as f64 * 0.01)
+            .find(|&k| (t.clear)(&slowed(motion.clone(), k)));
         let least = least.unwrap();
         assert!(least > 1.05, "X is in the way: {least}");
         assert!(

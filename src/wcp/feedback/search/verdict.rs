@@ -163,22 +163,8 @@ mod tests {
         let r1 = RobotSchedule::build(&cell, 0, &routes[0], &legs[0], &prepared.moves).unwrap();
         let mut robots = search.nodes[root].robots.clone();
         robots[0] = Arc::new(r1);
-        let makespan = robots.iter().map(|s| s.end).fold(0.0, f64::max);
-        let child = search.add(Node {
-            routes: Arc::new(routes.clone()),
-            conflicts: Arc::new(Vec::new()),
-            legs,
-            robots,
-            makespan,
-            parent: Some(root),
-            remedy: None,
-            depth: 1,
-            discrepancies: 0,
-            deviated_at: 0,
-            pending: None,
-            outcome: None,
-            prepared: None,
-        });
+        let child = search.add(Node::by_hand(root, &routes, legs, robots));
+        let makespan = search.nodes[child].makespan;
         assert!(
             makespan < search.nodes[root].makespan,
             "shorter: worth taking"
