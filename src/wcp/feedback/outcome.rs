@@ -242,8 +242,9 @@ pub struct Solved {
     /// Schedules checked: the rounds for the greedy loop, the search nodes for the search.
     pub nodes: usize,
     /// Schedules checked when the answer was found (of [`Solved::nodes`]): the last for the
-    /// greedy loop; for the search, when its best certified schedule came (the rest was spent
-    /// looking for a better one); none when there is no certified answer.
+    /// greedy loop; for the search, when its best certified schedule came (for a shortened
+    /// one, the schedule it shortens; the rest was spent looking for a better one); none when
+    /// there is no certified answer.
     pub found_after: Option<usize>,
     /// Wall time per stage.
     pub times: StageTimes,

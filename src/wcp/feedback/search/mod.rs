@@ -191,8 +191,9 @@ struct Search<'a> {
     best: Option<usize>,
     /// Schedules checked when it was found.
     best_at: usize,
-    /// Every node that was the best certified one when found, in order.
-    incumbents: Vec<usize>,
+    /// Every node that was the best certified one when found, in order, with the schedules
+    /// checked by then.
+    incumbents: Vec<(usize, usize)>,
     /// The colliding node whose first collision came latest.
     furthest: Option<usize>,
     /// Colliding nodes left unexpanded at the limit of rounds.

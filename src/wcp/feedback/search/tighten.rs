@@ -45,7 +45,7 @@ impl Search<'_> {
     /// the shortest of them all, shortened or not (one found earlier may shorten more).
     pub(super) fn tighten_all(&mut self, progress: &dyn Progress) {
         // The answer first: under a time limit, the one most likely to give the answer.
-        for id in self.incumbents.clone().into_iter().rev() {
+        for (id, found_at) in self.incumbents.clone().into_iter().rev() {
             if self.prepared.deadline.is_some_and(|d| Instant::now() >= d) {
                 break;
             }
@@ -58,7 +58,8 @@ impl Search<'_> {
             // Shortened slack brings robots home no later: the answer's own shortening wins
             // a tie.
             if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
-                self.best = Some(child);
+                // Found when the schedule it shortens was.
+                (self.best, self.best_at) = (Some(child), found_at);
                 progress.certified(m);
             }
         }

@@ -79,7 +79,7 @@ impl Search<'_> {
                 Status::Free if self.worth(id) => {
                     self.best = Some(id);
                     self.best_at = self.checked;
-                    self.incumbents.push(id);
+                    self.incumbents.push((id, self.checked));
                     progress.certified(self.nodes[id].makespan);
                 }
                 Status::Free | Status::Undecided => {}
