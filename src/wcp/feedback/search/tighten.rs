@@ -95,7 +95,6 @@ impl Search<'_> {
                 else {
                     continue;
                 };
-                // Slack shortened again is one entry, from its first length to its last.
                 let kind = kind(&legs, r, slack);
                 let leg = with_excess(&legs, r, slack, after);
                 // Reported as the robot does it: a slowed motion by its factor.
@@ -103,6 +102,7 @@ impl Search<'_> {
                     Shortening::Slow => (1.0 + before, 1.0 + after),
                     _ => (before, after),
                 };
+                // Slack shortened again is one entry, from its first length to its last.
                 match which.iter().position(|&w| w == (r, slack)) {
                     Some(k) => shortened[k].after = after,
                     None => {
