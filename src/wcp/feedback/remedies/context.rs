@@ -5,7 +5,7 @@
 use crate::cell::Cell;
 use crate::geometry::{closest_features, convex_hull, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::planning::PlannedMove;
-use crate::wcp::feedback::clearing::{clears, least};
+use crate::wcp::feedback::clearing::{clears, least, Least};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use crate::wcp::moves::MoveStore;
@@ -14,10 +14,14 @@ use crate::wcp::schedule::{route_nodes, RobotSchedule, Segment};
 use std::sync::Arc;
 
 /// What the remedies read: the cell, the moves, the options, and plans made so far.
+#[derive(Clone, Copy)]
 pub(crate) struct Ctx<'a> {
     pub cell: &'a Cell,
     pub moves: &'a MoveStore,
     pub opts: &'a SolveOptions,
+    /// A changed robot that ends at or after this makes a child the search drops (it
+    /// cannot beat the best certified schedule): the remedies stop refining it.
+    pub cap: f64,
 }
 
 /// The schedule a remedy changes: routes, legs and every robot's timed plan.
@@ -43,7 +47,17 @@ pub(crate) struct Child {
 
 impl<'a> Ctx<'a> {
     pub fn new(cell: &'a Cell, moves: &'a MoveStore, opts: &'a SolveOptions) -> Self {
-        Ctx { cell, moves, opts }
+        Ctx {
+            cell,
+            moves,
+            opts,
+            cap: f64::INFINITY,
+        }
+    }
+
+    /// This context with children capped at `cap` (see [`Ctx::cap`]).
+    pub fn capped(self, cap: f64) -> Self {
+        Ctx { cap, ..self }
     }
 
     /// Robot `x`'s schedule with leg `m` replaced; `None` if it cannot be timed.
@@ -116,7 +130,10 @@ pub(super) fn horizons(view: &View, y: usize, sy: &Segment, t0: f64) -> Vec<f64>
 }
 
 /// The least value in `(0, D]`, for the first horizon D that works, for which the leg
-/// `make(value)` of robot `x` clears `y` from `t0` (the leg's start) to the leg's end.
+/// `make(value)` of robot `x` clears `y` from `t0` (the leg's start) to the leg's end. A
+/// horizon is given up once what is left of it would end the robot at or after
+/// [`Ctx::cap`] (the search would drop that child); the next one may still hold a value
+/// that clears sooner, between the first one's steps.
 pub(super) fn least_clearing(
     ctx: &Ctx,
     view: &View,
@@ -126,22 +143,51 @@ pub(super) fn least_clearing(
     make: impl Fn(f64) -> Option<Leg>,
 ) -> Option<(f64, Leg, RobotSchedule)> {
     let opts = &ctx.opts.check;
-    horizons.iter().find_map(|&hi| {
-        let (value, (new, schedule)) = least(0.0, hi, |v| {
-            let new = make(v)?;
-            let s = ctx.rebuild(view, side.x, m, &new)?;
-            let t1 = side.window_end(&s, m);
-            let ok = clears(
-                ctx.cell,
-                (side.x, &s),
-                (side.y, &view.robots[side.y]),
-                (t0, t1),
-                opts,
-            );
-            ok.then_some((new, s))
-        })?;
-        Some((value, new, schedule))
-    })
+    // The end of the robot at the value last made: the scan asks next whether the value
+    // just below its next one (mostly the one it made) is viable.
+    let made = std::cell::Cell::new((f64::NAN, f64::NAN));
+    let make_at = |v: f64| {
+        let new = make(v)?;
+        let s = ctx.rebuild(view, side.x, m, &new)?;
+        made.set((v, s.end));
+        Some((new, s))
+    };
+    // A longer wait, pause or slowing never ends the robot sooner.
+    let viable = |v: f64| {
+        if ctx.cap == f64::INFINITY {
+            return true;
+        }
+        let end = match made.get() {
+            (at, end) if at == v => Some(end),
+            _ => make_at(v).map(|(_, s)| s.end),
+        };
+        end.is_none_or(|end| end < ctx.cap)
+    };
+    for &hi in horizons {
+        let found = least(
+            0.0,
+            hi,
+            |v| {
+                let (new, s) = make_at(v)?;
+                let t1 = side.window_end(&s, m);
+                let ok = clears(
+                    ctx.cell,
+                    (side.x, &s),
+                    (side.y, &view.robots[side.y]),
+                    (t0, t1),
+                    opts,
+                );
+                ok.then_some((new, s))
+            },
+            viable,
+        );
+        match found {
+            Least::Found(value, (new, schedule)) => return Some((value, new, schedule)),
+            Least::None => continue,
+            Least::Dropped => continue,
+        }
+    }
+    None
 }
 
 pub(super) fn child(

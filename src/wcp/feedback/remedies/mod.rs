@@ -150,3 +150,59 @@ fn wait(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let remedy = Remedy::on(side.x, m, nodes, RemedyKind::Wait { duration: d });
     Some(child(view, side.x, m, new, s, remedy))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::context::TestCell;
+    use super::*;
+    use crate::collision::check;
+    use crate::wcp::schedule::Schedule;
+
+    /// Two robots of side 0.7 crossing in the open, X (to a task of 4 s) and Y (1 s) at the
+    /// crossing together, with a pillar beside it: every single remedy finds something.
+    const CROSSING: &str = r#"{"delta": 0.01, "robots": [
+        {"name": "X", "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+         "home": [-5, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1},
+        {"name": "Y", "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+         "home": [0, -5], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1}],
+        "obstacles": [{"name": "pillar", "shape": [[1.5, 1.5], [2.5, 1.5], [2.5, 2.5], [1.5, 2.5]]}],
+        "tasks": [{"name": "x", "at": [5, 0], "duration": 4, "robots": ["X"]},
+                  {"name": "y", "at": [0, 5], "duration": 1, "robots": ["Y"]}]}"#;
+
+    /// Each child's remedy and the latest end of the robots it changes.
+    fn ends(children: &[Child]) -> Vec<(Remedy, f64)> {
+        (children.iter())
+            .map(|c| {
+                let end = c.changed.iter().map(|(_, s)| s.end).fold(0.0, f64::max);
+                (c.remedy.clone(), end)
+            })
+            .collect()
+    }
+
+    /// A cap drops only children the search would drop: capped, the candidates that end
+    /// before the cap are the uncapped ones that do, each the same, and fewer are made.
+    #[test]
+    fn a_cap_drops_only_the_children_that_end_at_or_after_it() {
+        let test = TestCell::new(CROSSING, vec![vec![0], vec![1]]);
+        let view = test.view();
+        let schedule = Schedule::of(view.robots.to_vec());
+        let report = check(&schedule.scene(&test.cell), &Default::default());
+        let c = schedule.collision(&test.cell, &report).expect("they cross");
+        let all = ends(&candidates(&test.ctx(), &view, &c, false));
+        assert!(all.len() >= 6, "{all:?}");
+        let mut cuts: Vec<f64> = all.iter().map(|a| a.1).collect();
+        cuts.sort_by(f64::total_cmp);
+        // At a child's own end (dropped: not sooner), and between two ends.
+        for cap in [cuts[cuts.len() / 2], 0.5 * (cuts[1] + cuts[2])] {
+            let capped = ends(&candidates(&test.ctx().capped(cap), &view, &c, false));
+            let before = |v: &[(Remedy, f64)]| -> Vec<_> {
+                v.iter().filter(|a| a.1 < cap).cloned().collect()
+            };
+            let kept = before(&all);
+            assert!(!kept.is_empty() && capped.len() < all.len(), "cap {cap}");
+            assert_eq!(before(&capped), kept, "cap {cap}");
+            // What ends later is what the cap does not refine (a detour), made as before.
+            assert!(capped.iter().all(|a| all.contains(a)), "cap {cap}");
+        }
+    }
+}

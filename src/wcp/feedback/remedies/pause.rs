@@ -11,6 +11,7 @@ use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, Leg, Piece};
 use crate::wcp::moves::certify;
 use crate::wcp::schedule::{Activity, Segment};
+use std::cell::Cell;
 
 /// Back-off distances of a pause, in units of the two robots' radii summed: how far short
 /// of the contact point along its path the robot stops.
@@ -90,19 +91,27 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let old = leg(view.legs, side.x, m).clone();
     let t0 = leg_window(&view.robots[side.x], m).0;
     let horizons = horizons(view, side.y, &side.sy, t0);
+    // A later stop wins only by ending sooner than the best so far: none is refined past it.
+    let bound = Cell::new(ctx.cap);
     let tried = PAUSE_BACKOFF.iter().filter_map(|back| {
+        let ctx = ctx.capped(bound.get());
         let (before, after) = split_chain(&motion.primitives, at - back * reach)?;
         let (first, second) = (
             ctx.moves.timed(side.x, &before),
             ctx.moves.timed(side.x, &after),
         );
+        let make = |d: f64| Some(paused(&old, &pieces, k, (&first, &second, scale), d));
+        // Stopping costs time even without a hold: no certificate for a stop that loses.
+        if ctx.cap < f64::INFINITY && ctx.rebuild(view, side.x, m, &make(0.0)?)?.end >= ctx.cap {
+            return None;
+        }
         let obstacles = ctx.moves.obstacles();
         for half in [&first, &second] {
             certify(ctx.cell, side.x, &half.samples, obstacles).ok()?;
         }
         let stop = first.path.last().copied()?;
-        let make = |d: f64| Some(paused(&old, &pieces, k, (&first, &second, scale), d));
-        let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
+        let (d, new, s) = least_clearing(&ctx, view, side, (m, t0), &horizons, make)?;
+        bound.set(s.end);
         Some((s.end, (d, stop, new, s)))
     });
     // On ties the stop nearest the contact (tried first).

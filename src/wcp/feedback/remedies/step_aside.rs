@@ -12,6 +12,7 @@ use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::leg;
 use crate::wcp::moves::node_pose;
 use crate::wcp::schedule::Activity;
+use std::cell::Cell;
 
 /// Parking rings, in the parking robot's radii, and directions per ring.
 const PARK_RINGS: [f64; 5] = [2.0, 3.0, 4.5, 6.5, 9.0];
@@ -123,6 +124,7 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let (a, b) = (node_pose(ctx.cell, x, from), node_pose(ctx.cell, x, to));
     let old = leg(view.legs, x, m).clone();
     let keep_wait = matches!(side.sx.activity, Activity::Done);
+    let bound = Cell::new(ctx.cap);
     let tried = parking_poses(ctx, view, x, side.y, q, (t.min(t0.max(0.0)), until))
         .into_iter()
         .filter_map(|p| {
@@ -132,9 +134,12 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         })
         .take(PARK_TRIES)
         .filter_map(|(p, there, back)| {
+            // A farther pose wins only by ending sooner than the best so far.
+            let ctx = ctx.capped(bound.get());
             let wait = if keep_wait { old.wait } else { 0.0 };
             let make = |d: f64| Some(by_parking(wait, (&there, &back), d));
-            let (d, new, s) = least_clearing(ctx, view, side, (m, t0), &horizons, make)?;
+            let (d, new, s) = least_clearing(&ctx, view, side, (m, t0), &horizons, make)?;
+            bound.set(s.end);
             Some((s.end, (p, d, new, s)))
         });
     let (park, d, new, s) = earliest(tried)?;

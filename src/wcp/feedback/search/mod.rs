@@ -424,7 +424,11 @@ impl Search<'_> {
         };
         let own = node.prepared.clone();
         let prepared = self.prepared_of(id);
-        let ctx = Ctx::new(self.cell, &prepared.moves, self.opts);
+        // A child that cannot beat the best is dropped: its remedy need not refine it.
+        let cap = self.best.map_or(f64::INFINITY, |b| {
+            self.nodes[b].makespan * (1.0 - SAME_MAKESPAN)
+        });
+        let ctx = Ctx::new(self.cell, &prepared.moves, self.opts).capped(cap);
         let again = self.met_before(id, &c);
         let met = c.robots.1.filter(|_| self.opts.search.remember).map(|b| {
             let assignment = prepared.moves.assignment();
