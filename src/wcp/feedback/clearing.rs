@@ -69,38 +69,26 @@ fn window(samples: &[Sample], t0: f64, t1: f64) -> (usize, usize) {
     (first, last)
 }
 
-/// What [`least`] found.
-pub(super) enum Least<T> {
-    /// The least value that succeeds, and what `f` gave there.
-    Found(f64, T),
-    /// No scanned value succeeds.
-    None,
-    /// Given up: the answer, if any, is not viable.
-    Dropped,
-}
-
 /// The least `p` in `(lo, hi]` for which `f(p)` succeeds, to within the resolution of a scan
 /// of [`SCAN`] values refined by [`BISECTIONS`] bisections, with what `f` gave there. Only
 /// values that are `viable` are wanted, and `viable` holds for the values below some bound
 /// (a robot's end grows with its wait): once the answer must lie above a value that is not
-/// viable, the search gives up without calling `f` again (`Least::Dropped`). Where it does
-/// not, it finds what it would find with every value viable.
+/// viable, the search gives up without calling `f` again (`None`, as when no scanned value
+/// succeeds). Where it does not, it finds what it would find with every value viable.
 pub(super) fn least<T>(
     lo: f64,
     hi: f64,
     f: impl Fn(f64) -> Option<T>,
     viable: impl Fn(f64) -> bool,
-) -> Least<T> {
+) -> Option<(f64, T)> {
     let step = (hi - lo) / SCAN as f64;
     let mut scan = (1..=SCAN).map(|k| if k == SCAN { hi } else { lo + step * k as f64 });
     // The answer of a scanned value p lies in (p - step, p]: none is viable once p - step
     // is not.
     let (mut below, mut best) = loop {
-        let Some(p) = scan.next() else {
-            return Least::None;
-        };
+        let p = scan.next()?;
         if !viable(p - step) {
-            return Least::Dropped;
+            return None;
         }
         if let Some(t) = f(p) {
             break (p - step, (p, t));
@@ -114,38 +102,27 @@ pub(super) fn least<T>(
         match f(mid) {
             Some(t) => best = (mid, t),
             None if viable(mid) => below = mid,
-            None => return Least::Dropped,
+            None => return None,
         }
     }
-    Least::Found(best.0, best.1)
+    Some(best)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// The answer of [`least`], when found.
-    fn found<T>(least: Least<T>) -> Option<(f64, T)> {
-        match least {
-            Least::Found(p, t) => Some((p, t)),
-            Least::None | Least::Dropped => None,
-        }
-    }
-
     #[test]
     fn least_finds_the_threshold_from_above() {
         let all = |_: f64| true;
-        let (p, v) = found(least(0.0, 12.0, |p| (p >= 3.3).then_some(p * 2.0), all)).unwrap();
+        let (p, v) = (least(0.0, 12.0, |p| (p >= 3.3).then_some(p * 2.0), all)).unwrap();
         assert!((3.3..3.3 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
         assert_eq!(v, 2.0 * p);
-        assert!(matches!(
-            least(0.0, 10.0, |p| (p > 11.0).then_some(()), all),
-            Least::None
-        ));
+        assert!(least(0.0, 10.0, |p| (p > 11.0).then_some(()), all).is_none());
         // Not monotone: clears early (before the other robot arrives) and late; the scan
         // finds the early window, not the threshold of the late one.
         let early = |p: f64| ((1.5..2.5).contains(&p) || p > 9.0).then_some(());
-        let (p, _) = found(least(0.0, 12.0, early, all)).unwrap();
+        let (p, _) = (least(0.0, 12.0, early, all)).unwrap();
         assert!((1.5..1.5 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
     }
 
@@ -159,19 +136,15 @@ mod tests {
             (p >= 3.3).then_some(())
         };
         // Scanned by steps of 1: 3.3 lies above 3, the last value that fails.
-        let (p, _) = found(least(0.0, 12.0, f, |v| v < 3.31)).unwrap();
+        let (p, _) = (least(0.0, 12.0, f, |v| v < 3.31)).unwrap();
         assert!((3.3..3.3 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
         let all = tries.replace(0);
-        assert!(matches!(least(0.0, 12.0, f, |v| v < 3.29), Least::Dropped));
+        assert!(least(0.0, 12.0, f, |v| v < 3.29).is_none());
         assert!(tries.get() < all, "{} tries of {all}", tries.get());
         // None viable past 2: the values from 3 on are never tried.
         tries.set(0);
-        assert!(matches!(least(0.0, 12.0, f, |v| v < 2.0), Least::Dropped));
+        assert!(least(0.0, 12.0, f, |v| v < 2.0).is_none());
         assert_eq!(tries.get(), 2);
-        assert!(matches!(
-            least(0.0, 10.0, |p| (p > 11.0).then_some(()), |v| v < 20.0),
-            Least::None
-        ));
     }
 
     #[test]

@@ -5,7 +5,7 @@
 use crate::cell::Cell;
 use crate::geometry::{closest_features, convex_hull, ConvexPolygon, Posed, Vec2, WalkTolerances};
 use crate::planning::PlannedMove;
-use crate::wcp::feedback::clearing::{clears, least, Least};
+use crate::wcp::feedback::clearing::{clears, least};
 use crate::wcp::feedback::Remedy;
 use crate::wcp::legs::{leg, with_leg, HoldReason, Leg, Legs, Piece};
 use crate::wcp::moves::MoveStore;
@@ -132,8 +132,8 @@ pub(super) fn horizons(view: &View, y: usize, sy: &Segment, t0: f64) -> Vec<f64>
 /// The least value in `(0, D]`, for the first horizon D that works, for which the leg
 /// `make(value)` of robot `x` clears `y` from `t0` (the leg's start) to the leg's end. A
 /// horizon is given up once what is left of it would end the robot at or after
-/// [`Ctx::cap`] (the search would drop that child); the next one may still hold a value
-/// that clears sooner, between the first one's steps.
+/// [`Ctx::cap`] (the search would drop that child), as one where nothing clears: the next
+/// may still hold a value that clears sooner, between the first one's steps.
 pub(super) fn least_clearing(
     ctx: &Ctx,
     view: &View,
@@ -163,31 +163,22 @@ pub(super) fn least_clearing(
         };
         end.is_none_or(|end| end < ctx.cap)
     };
-    for &hi in horizons {
-        let found = least(
-            0.0,
-            hi,
-            |v| {
-                let (new, s) = make_at(v)?;
-                let t1 = side.window_end(&s, m);
-                let ok = clears(
-                    ctx.cell,
-                    (side.x, &s),
-                    (side.y, &view.robots[side.y]),
-                    (t0, t1),
-                    opts,
-                );
-                ok.then_some((new, s))
-            },
-            viable,
-        );
-        match found {
-            Least::Found(value, (new, schedule)) => return Some((value, new, schedule)),
-            Least::None => continue,
-            Least::Dropped => continue,
-        }
-    }
-    None
+    horizons.iter().find_map(|&hi| {
+        let clearing = |v: f64| {
+            let (new, s) = make_at(v)?;
+            let t1 = side.window_end(&s, m);
+            let ok = clears(
+                ctx.cell,
+                (side.x, &s),
+                (side.y, &view.robots[side.y]),
+                (t0, t1),
+                opts,
+            );
+            ok.then_some((new, s))
+        };
+        let (value, (new, schedule)) = least(0.0, hi, clearing, viable)?;
+        Some((value, new, schedule))
+    })
 }
 
 pub(super) fn child(
