@@ -115,14 +115,14 @@ mod tests {
     #[test]
     fn least_finds_the_threshold_from_above() {
         let all = |_: f64| true;
-        let (p, v) = (least(0.0, 12.0, |p| (p >= 3.3).then_some(p * 2.0), all)).unwrap();
+        let (p, v) = least(0.0, 12.0, |p| (p >= 3.3).then_some(p * 2.0), all).unwrap();
         assert!((3.3..3.3 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
         assert_eq!(v, 2.0 * p);
         assert!(least(0.0, 10.0, |p| (p > 11.0).then_some(()), all).is_none());
         // Not monotone: clears early (before the other robot arrives) and late; the scan
         // finds the early window, not the threshold of the late one.
         let early = |p: f64| ((1.5..2.5).contains(&p) || p > 9.0).then_some(());
-        let (p, _) = (least(0.0, 12.0, early, all)).unwrap();
+        let (p, _) = least(0.0, 12.0, early, all).unwrap();
         assert!((1.5..1.5 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
     }
 
@@ -136,7 +136,7 @@ mod tests {
             (p >= 3.3).then_some(())
         };
         // Scanned by steps of 1: 3.3 lies above 3, the last value that fails.
-        let (p, _) = (least(0.0, 12.0, f, |v| v < 3.31)).unwrap();
+        let (p, _) = least(0.0, 12.0, f, |v| v < 3.31).unwrap();
         assert!((3.3..3.3 + 1.0 / 256.0 + 1e-12).contains(&p), "{p}");
         let all = tries.replace(0);
         assert!(least(0.0, 12.0, f, |v| v < 3.29).is_none());
