@@ -224,15 +224,50 @@ pub struct PairStats {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn check(scene: &Scene, opts: &CheckOptions) -> CheckReport {
+    check_known(scene, opts, &[])
+}
+
+/// [`check`] of a scene some of whose pairs an earlier check proved δ apart up to a time:
+/// bodies `i` and `j` are known δ apart before `min(known[i], known[j])` (a body not listed
+/// is known nowhere), and the merged intervals that end by then are skipped, as the broad
+/// phase skips those its boxes prove free (the first interval examined starts from a fresh
+/// evaluation). When the knowledge is true, the verdict, the first contact and `safe_until`
+/// are those of [`check`], and the counters count only the intervals examined; what is known
+/// is the caller's to prove, and is not checked again.
+///
+/// ```
+/// use workcell::collision::{check, check_known, Body, CheckOptions, Scene};
+/// use workcell::geometry::ConvexPolygon;
+/// use workcell::motion::{Pose, Trajectory};
+/// // A unit square driving at 1 into one standing 6 ahead: they meet near t = 5.
+/// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
+/// let drive = Trajectory::from_poses((0..=10).map(|t| (t as f64, Pose::new(t as f64, 0.0, 0.0))))?;
+/// let stand = Trajectory::from_poses([(0.0, Pose::new(6.0, 0.0, 0.0)), (10.0, Pose::new(6.0, 0.0, 0.0))])?;
+/// let scene = Scene::with_bodies(0.1, [
+///     Body::robot("driver", square.clone(), drive),
+///     Body::robot("wall", square, stand),
+/// ])?;
+/// let opts = CheckOptions::default();
+/// let full = check(&scene, &opts);
+/// // Known apart up to t = 3 (true): the same contact, fewer intervals searched.
+/// let known = check_known(&scene, &opts, &[3.0, 3.0]);
+/// assert_eq!((known.first_contact, known.safe_until), (full.first_contact.clone(), full.safe_until));
+/// assert!(known.stats.intervals < full.stats.intervals);
+/// // Told they are apart up to t = 6 (false), the check takes it: the contact found is later.
+/// let told = check_known(&scene, &opts, &[6.0, 6.0]);
+/// assert!(told.first_contact.unwrap().time > full.first_contact.unwrap().time);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn check_known(scene: &Scene, opts: &CheckOptions, known: &[f64]) -> CheckReport {
     if let Err(e) = validate(scene, opts) {
         panic!("collision::check: {e}");
     }
     if scene.robot_count() >= PARALLEL_MIN_ROBOTS {
         // The broad phase goes to the thread pool twice and the pairs once more: from a
         // thread outside the pool, hand the whole check over once instead.
-        rayon::scope(|_| check_in_pool(scene, opts))
+        rayon::scope(|_| check_in_pool(scene, opts, known))
     } else {
-        check_in_pool(scene, opts)
+        check_in_pool(scene, opts, known)
     }
 }
 
@@ -300,7 +335,7 @@ pub fn validate(scene: &Scene, opts: &CheckOptions) -> Result<(), InputError> {
     Ok(())
 }
 
-fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
+fn check_in_pool(scene: &Scene, opts: &CheckOptions, known: &[f64]) -> CheckReport {
     let horizon = scene.horizon();
     let delta = opts.delta.unwrap_or(scene.delta);
     let time_tol = opts.time_tol_for(horizon);
@@ -319,23 +354,51 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions) -> CheckReport {
         candidate_pairs(scene, delta)
     };
     // A robot with a long trajectory meets most obstacles only now and then: each such
-    // pair is checked in its windows, and dropped when it has none.
+    // pair is checked in its windows, and dropped when it has none; a pair known apart up
+    // to a time, from there on only.
+    let from = |(i, j): (usize, usize)| {
+        let at = |k: usize| known.get(k).copied().unwrap_or(f64::NEG_INFINITY);
+        at(i).min(at(j))
+    };
     let (pairs, windows): (Vec<_>, Vec<_>) = pairs
         .iter()
         .copied()
         .zip(pair_windows(scene, &pairs, delta))
+        .map(|(p, w)| match from(p) {
+            t if t > horizon.0 => (p, Some(after(w, t))),
+            _ => (p, w),
+        })
         .filter(|(_, w)| w.as_ref().is_none_or(|w| !w.is_empty()))
         .unzip();
-    let checks = run_pairs(scene, opts, &pairs, windows, &settings);
+    // The pairs known least go first: a change made to a body is where the first contact
+    // most often is, and a contact found stops the others sooner.
+    let latest = pairs
+        .iter()
+        .map(|&p| from(p))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let first: Vec<bool> = pairs.iter().map(|&p| from(p) < latest).collect();
+    let checks = run_pairs(scene, opts, (&pairs, &first), windows, &settings);
     report(scene, opts, &settings, (all_pairs, &pairs), &checks)
 }
 
-/// Each pair checked through the horizon, in the order given: on the pool when the work
-/// is worth it.
+/// Windows `w` (`None`: the whole horizon) from time `t` on.
+fn after(w: Option<Windows>, t: f64) -> Windows {
+    match w {
+        None => vec![(t, f64::INFINITY)],
+        Some(w) => (w.into_iter())
+            .filter(|&(_, end)| end > t)
+            .map(|(start, end)| (start.max(t), end))
+            .collect(),
+    }
+}
+
+/// Each pair checked through the horizon, those marked `first` before the others, with the
+/// limit they found: on the pool when the work is worth it. The checks come in the order
+/// of `pairs`.
 fn run_pairs<'s>(
     scene: &'s Scene,
     opts: &CheckOptions,
-    pairs: &[(usize, usize)],
+    (pairs, first): (&[(usize, usize)], &[bool]),
     windows: Vec<Option<Windows>>,
     settings: &PairSettings,
 ) -> Vec<PairCheck<'s>> {
@@ -363,16 +426,20 @@ fn run_pairs<'s>(
         .map(|&(i, j)| sample_count(&scene.bodies[i]) + sample_count(&scene.bodies[j]) + 1)
         .sum();
     // Each pair's state stays where it started until the report is made.
-    let mut checks: Vec<PairCheck>;
-    if pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS {
-        checks = pairs.par_iter().zip(windows).map(start).collect();
-        checks
-            .par_iter_mut()
-            .for_each_init(Scratch::default, finish);
-    } else {
-        checks = pairs.iter().zip(windows).map(start).collect();
-        let mut scratch = Scratch::default();
-        checks.iter_mut().for_each(|p| finish(&mut scratch, p));
+    let parallel = pairs.len() > 1 && work >= PARALLEL_MIN_INTERVALS;
+    let mut checks: Vec<PairCheck> = match parallel {
+        true => pairs.par_iter().zip(windows).map(start).collect(),
+        false => pairs.iter().zip(windows).map(start).collect(),
+    };
+    let (mut lead, mut rest): (Vec<_>, Vec<_>) =
+        (checks.iter_mut().zip(first)).partition(|(_, &f)| f);
+    for phase in [&mut lead, &mut rest] {
+        if parallel {
+            (phase.par_iter_mut()).for_each_init(Scratch::default, |s, (p, _)| finish(s, p));
+        } else {
+            let mut scratch = Scratch::default();
+            phase.iter_mut().for_each(|(p, _)| finish(&mut scratch, p));
+        }
     }
     checks
 }

@@ -30,8 +30,8 @@ mod verdict;
 pub use arm::Arm;
 pub use broad_phase::candidate_pairs;
 pub use check::{
-    check, try_check, validate, BudgetExhausted, CheckOptions, CheckReport, Contact, PairStats,
-    DEFAULT_MAX_WORK_PER_PAIR, DEFAULT_TIME_TOL_OVER_HORIZON,
+    check, check_known, try_check, validate, BudgetExhausted, CheckOptions, CheckReport, Contact,
+    PairStats, DEFAULT_MAX_WORK_PER_PAIR, DEFAULT_TIME_TOL_OVER_HORIZON,
 };
 pub use method::Method;
 #[cfg(feature = "parry-peer")]

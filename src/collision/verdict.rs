@@ -101,6 +101,32 @@ impl CheckReport {
             },
         }
     }
+
+    /// Up to when the check proved every pair δ apart: `safe_until` when the report is
+    /// certified (no graze, which proves only δ·(1 − grazing_tol), nothing unresolved, no
+    /// budget run out, a method that proves), else nothing. What [`super::check_known`] may
+    /// be told of the same bodies, over the times they move alike.
+    ///
+    /// ```
+    /// use workcell::collision::{check, Body, CheckOptions, Method, Scene};
+    /// use workcell::geometry::ConvexPolygon;
+    /// use workcell::motion::{Pose, Trajectory};
+    /// // A square drives at 1 into one standing 6 ahead: they meet near t = 5.
+    /// let square = ConvexPolygon::rectangle(1.0, 1.0)?;
+    /// let drive = Trajectory::from_poses([(0.0, Pose::new(0.0, 0.0, 0.0)), (10.0, Pose::new(10.0, 0.0, 0.0))])?;
+    /// let stand = Trajectory::from_poses([(0.0, Pose::new(6.0, 0.0, 0.0)), (10.0, Pose::new(6.0, 0.0, 0.0))])?;
+    /// let scene = Scene::with_bodies(0.1, [Body::robot("A", square.clone(), drive), Body::robot("B", square, stand)])?;
+    /// let proved = check(&scene, &CheckOptions::default());
+    /// assert_eq!(proved.proven_until(), Some(proved.safe_until));
+    /// assert!(proved.safe_until > 4.8 && proved.safe_until < 5.0);
+    /// // Samples prove nothing.
+    /// let sampled = CheckOptions { method: Method::Sampled { step: 0.01 }, ..CheckOptions::default() };
+    /// assert_eq!(check(&scene, &sampled).proven_until(), None);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn proven_until(&self) -> Option<f64> {
+        self.certified.then_some(self.safe_until)
+    }
 }
 
 /// One line: `free (certified)`, `contact between A and B at t = 0.45 (distance 0)`, or

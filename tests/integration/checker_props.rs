@@ -14,7 +14,7 @@ use proptest::test_runner::TestRunner;
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use std::f64::consts::PI;
 use std::sync::OnceLock;
-use workcell::collision::{check, Body, CheckOptions, CheckReport, Contact, Scene};
+use workcell::collision::{check, check_known, Body, CheckOptions, CheckReport, Contact, Scene};
 use workcell::geometry::Vec2;
 use workcell::motion::{Sample, Trajectory};
 
@@ -417,6 +417,26 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
             "certified free until {} but the distance is {d:e} at t = {t}",
             report.safe_until
         );
+    }
+
+    // (f) What an earlier check proved is not searched again: known δ apart up to its
+    // certified prefix, or half of it, the scene has the same verdict and first contact.
+    // A graze proves less than δ: nothing is known then.
+    for share in [0.5, 1.0]
+        .into_iter()
+        .filter(|_| report.proven_until().is_some())
+    {
+        let known = h0 + share * (report.proven_until().unwrap() - h0);
+        let again = check_known(&scene, &opts, &vec![known; scene.bodies.len()]);
+        prop_assert_eq!(
+            &again.first_contact,
+            &report.first_contact,
+            "known to {}",
+            known
+        );
+        prop_assert_eq!(again.safe_until, report.safe_until, "known to {}", known);
+        prop_assert_eq!(again.verdict(), report.verdict(), "known to {}", known);
+        prop_assert!(again.stats.intervals <= report.stats.intervals);
     }
 
     // (d) The report does not depend on the number of threads.

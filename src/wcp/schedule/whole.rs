@@ -138,7 +138,18 @@ impl Schedule {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn check(&self, scene: &Scene, opts: &CheckOptions) -> CheckReport {
-        let report = crate::collision::check(scene, opts);
+        self.check_known(scene, opts, &[])
+    }
+
+    /// [`Schedule::check`] of pairs known δ apart up to a time (see
+    /// [`crate::collision::check_known`]): the same report.
+    pub(crate) fn check_known(
+        &self,
+        scene: &Scene,
+        opts: &CheckOptions,
+        known: &[f64],
+    ) -> CheckReport {
+        let report = crate::collision::check_known(scene, opts, known);
         let grazed = !report.collision && report.stats.grazing > 0;
         if !grazed || opts.time_tol.is_some() {
             return report;
@@ -156,7 +167,7 @@ impl Schedule {
             time_tol: Some(tol),
             ..*opts
         };
-        crate::collision::check(scene, &finer)
+        crate::collision::check_known(scene, &finer, known)
     }
 
     /// Robots `a` and `b` alone: the scene of one pair.
@@ -179,6 +190,19 @@ impl Schedule {
             delta: cell.delta,
             bodies,
         }
+    }
+
+    /// Each checker body's robot, in the order of [`Schedule::robots_scene`].
+    pub(crate) fn body_robots(&self, cell: &Cell) -> Vec<usize> {
+        (0..self.robots.len())
+            .flat_map(|r| {
+                let n = match &cell.robots[r].kind {
+                    RobotKind::Rigid(_) => 1,
+                    RobotKind::Arm(arm) => arm.links.len(),
+                };
+                std::iter::repeat_n(r, n)
+            })
+            .collect()
     }
 
     /// Robot `r` as checker bodies: one for a rigid robot, one per link for an arm.

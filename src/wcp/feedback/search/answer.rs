@@ -82,7 +82,7 @@ impl Search<'_> {
         // the whole schedule, as the user checks it.
         let report = match outcome.whole {
             true => outcome.report.clone(),
-            false => Outcome::of(self.cell, &schedule, &self.opts.check, true).report,
+            false => Outcome::of(self.cell, &schedule, &self.opts.check, true, &[]).report,
         };
         Solved {
             routes: (*node.routes).clone(),

@@ -4,10 +4,11 @@
 //! A search node is a schedule: routes, the conflicts the sequencer must avoid, and every
 //! robot's legs. Every node is checked when it is made (`verdict.rs`: a root whole; any
 //! other node's robots against each other, as every motion it adds is certified clear of the
-//! fixtures when made, and whole once found free). A node whose schedule collides
-//! branches into its children, one per way out of that collision: either robot yielding by
-//! each remedy of `remedies/` (each the least of its kind that clears the pair), or the
-//! sequencer re-planning with the two colliding steps forbidden together. A re-sequencing
+//! fixtures when made, from where its parent's check left off, and whole once found free).
+//! A node whose schedule collides branches into its children, one per way out of that
+//! collision: either robot yielding by each remedy of `remedies/` (each the least of its
+//! kind that clears the pair), or the sequencer re-planning with the two colliding steps
+//! forbidden together. A re-sequencing
 //! child is costed lazily: it waits in the queue, and the sequencer runs only when it comes
 //! out. A remedy's last resort (a detour round the other side of a loop, a robot making way
 //! ahead of another) is made at once but checked only when it comes out. A reconfiguration

@@ -163,7 +163,7 @@ impl Search<'_> {
         let schedule = Schedule::of(self.nodes[child].robots.clone());
         let opts = &self.opts.check;
         let free = [false, true].into_iter().all(|whole| {
-            let outcome = Outcome::of(self.cell, &schedule, opts, whole);
+            let outcome = Outcome::of(self.cell, &schedule, opts, whole, &[]);
             let status = outcome.status();
             self.nodes[child].outcome = Some(outcome);
             status == Status::Free

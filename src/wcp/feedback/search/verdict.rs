@@ -1,12 +1,14 @@
 //! The checker's verdict on a node: a root checked whole, robots and fixtures; any other node
-//! for its robots against each other, and whole once found free.
+//! for its robots against each other, from where its parent's check proved nothing, and
+//! whole once found free.
 
 use super::{Outcome, Search, Status};
 use crate::cell::Cell;
 use crate::collision::CheckOptions;
 use crate::wcp::prepare::Progress;
-use crate::wcp::schedule::Schedule;
+use crate::wcp::schedule::{RobotSchedule, Schedule};
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::time::Instant;
 
 impl Outcome {
@@ -17,12 +19,20 @@ impl Outcome {
         schedule: &Schedule,
         opts: &CheckOptions,
         whole: bool,
+        known: &[f64],
     ) -> Outcome {
         let scene = match whole {
             true => schedule.scene(cell),
             false => schedule.robots_scene(cell),
         };
-        let report = schedule.check(&scene, opts);
+        // By body: an arm is a body per link.
+        let known: Vec<f64> = match known.is_empty() {
+            true => Vec::new(),
+            false => (schedule.body_robots(cell).into_iter())
+                .map(|r| known[r])
+                .collect(),
+        };
+        let report = schedule.check_known(&scene, opts, &known);
         let collision = schedule.collision(cell, &report);
         Outcome {
             report,
@@ -47,22 +57,28 @@ impl Search<'_> {
     /// is certified clear of the fixtures when it is made (planned moves by the store, the
     /// remedies' by the checker, holds where such a motion rests, slower runs of the same
     /// path), so any other node is checked for its robots against each other only (solves
-    /// of the aisle grids of 7 and 8 robots 15-20 % faster); one found free is then checked
-    /// whole, and only that verdict makes it a candidate answer.
+    /// of the aisle grids of 7 and 8 robots 15-20 % faster), and only from where its
+    /// parent's check left off ([`Search::known_apart`]): a child shares its parent's
+    /// motions up to the change it makes, and the pairs the parent proved apart up to its
+    /// first contact need no second proof there (the children's checks of the doorway and
+    /// aisle cells about a third shorter, every verdict the same). One found free is then
+    /// checked whole, from the start, and only that verdict makes it a candidate answer.
     pub(super) fn check_all(&mut self, ids: &[usize], progress: &dyn Progress) {
         let clock = Instant::now();
         let (cell, check_opts) = (self.cell, &self.opts.check);
         let outcomes: Vec<Outcome> = ids
             .par_iter()
             .map(|&id| {
-                let schedule = Schedule::of(self.nodes[id].robots.clone());
-                if self.nodes[id].parent.is_some() {
-                    let robots = Outcome::of(cell, &schedule, check_opts, false);
+                let node = &self.nodes[id];
+                let schedule = Schedule::of(node.robots.clone());
+                if let Some(p) = node.parent {
+                    let known = self.known_apart(p, &node.robots);
+                    let robots = Outcome::of(cell, &schedule, check_opts, false, &known);
                     if robots.status() != Status::Free {
                         return robots;
                     }
                 }
-                Outcome::of(cell, &schedule, check_opts, true)
+                Outcome::of(cell, &schedule, check_opts, true, &[])
             })
             .collect();
         self.times.checking += clock.elapsed();
@@ -96,6 +112,51 @@ impl Search<'_> {
             }
         }
     }
+
+    /// Up to when each robot of a child of node `parent` is known δ apart from every other,
+    /// from the parent's check: every pair of the parent up to where that check proved them
+    /// apart ([`CheckReport::proven_until`]), a robot the child moved only up to its last
+    /// sample the parent shares. Empty when nothing is known.
+    ///
+    /// [`CheckReport::proven_until`]: crate::collision::CheckReport::proven_until
+    fn known_apart(&self, parent: usize, robots: &[Arc<RobotSchedule>]) -> Vec<f64> {
+        let node = &self.nodes[parent];
+        let until = node.outcome.as_ref().and_then(|o| o.report.proven_until());
+        let Some(until) = until.filter(|_| node.robots.len() == robots.len()) else {
+            return Vec::new();
+        };
+        (robots.iter().zip(&node.robots))
+            .map(|(now, before)| match Arc::ptr_eq(now, before) {
+                true => until,
+                false => until.min(shared_until(now, before)),
+            })
+            .collect()
+    }
+}
+
+/// The time of the last sample two schedules of one robot share from the start, before
+/// which they move alike (−∞ when their first samples differ).
+fn shared_until(a: &RobotSchedule, b: &RobotSchedule) -> f64 {
+    let common = |n: usize| n.checked_sub(1);
+    let last = match a.joints.is_empty() && b.joints.is_empty() {
+        true => common(
+            a.samples
+                .iter()
+                .zip(&b.samples)
+                .take_while(|(x, y)| x == y)
+                .count(),
+        )
+        .map(|k| a.samples[k].t),
+        false => common(
+            a.joints
+                .iter()
+                .zip(&b.joints)
+                .take_while(|(x, y)| x == y)
+                .count(),
+        )
+        .map(|k| a.joints[k].t),
+    };
+    last.unwrap_or(f64::NEG_INFINITY)
 }
 
 #[cfg(test)]
@@ -176,5 +237,119 @@ mod tests {
         let c = outcome.collision.as_ref().unwrap();
         assert_eq!((c.robots.0, c.robots.1), (0, None), "R1 and the wall");
         assert_eq!(search.best, Some(root));
+    }
+
+    /// R1 drives to its task at (6, 0), where R2 crosses later; R3 stands at (3, 2), beside
+    /// R1's way.
+    const THREE: &str = r#"{
+        "delta": 0.01,
+        "robots": [
+            {"name": "R1", "home": [0, 0, 0], "shape": [[-0.3, -0.3], [0.3, -0.3], [0.3, 0.3], [-0.3, 0.3]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5},
+            {"name": "R2", "home": [6, -6, 0], "shape": [[-0.3, -0.3], [0.3, -0.3], [0.3, 0.3], [-0.3, 0.3]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5},
+            {"name": "R3", "home": [3, 2, 0], "shape": [[-0.3, -0.3], [0.3, -0.3], [0.3, 0.3], [-0.3, 0.3]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5}
+        ],
+        "tasks": [{"name": "t1", "at": [6, 0, 0], "duration": 1.0, "robots": ["R1"]},
+                  {"name": "t2", "at": [6, 6, 0], "duration": 1.0, "robots": ["R2"]}]
+    }"#;
+
+    /// A child is checked only where its parent's check did not already prove its pairs
+    /// apart: from the parent's contact on for robots it kept, from the start for a robot it
+    /// moved from the start. R1 re-routed through R3 hits it long before the parent's
+    /// contact of R1 and R2; that collision is found, the one a whole check finds.
+    #[test]
+    fn a_child_is_checked_from_where_its_parent_proved_nothing() {
+        let cell = crate::cell::parse_cell(THREE, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let opts = SolveOptions::default();
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let mut search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
+        let routes = vec![vec![0], vec![1], vec![]];
+        let root = search.add_root(&routes).unwrap().unwrap();
+        search.check_all(&[root], &());
+        let late = search
+            .collision(root)
+            .expect("R1 and R2 meet at R1's task")
+            .clone();
+        assert_eq!((late.robots.0, late.robots.1), (0, Some(1)));
+        // R1 by way of R3's place.
+        let by_r3 = prepared.moves.timed(
+            0,
+            &[Primitive {
+                path: vec![
+                    Vec2::new(0.0, 0.0),
+                    Vec2::new(3.0, 1.8),
+                    Vec2::new(6.0, 0.0),
+                ],
+                theta: 0.0,
+                turn: 0.0,
+            }],
+        );
+        let leg = Leg {
+            wait: 0.0,
+            pieces: Some(
+                vec![Piece::Go {
+                    motion: by_r3,
+                    scale: 1.0,
+                }]
+                .into(),
+            ),
+        };
+        let mut legs = default_legs(3);
+        legs[0] = Arc::new(vec![leg]);
+        let r1 = RobotSchedule::build(&cell, 0, &routes[0], &legs[0], &prepared.moves).unwrap();
+        let mut robots = search.nodes[root].robots.clone();
+        robots[0] = Arc::new(r1);
+        let whole = Outcome::of(
+            &cell,
+            &Schedule::of(robots.clone()),
+            &opts.check,
+            false,
+            &[],
+        );
+        let child = search.add(Node::by_hand(root, &routes, legs, robots));
+        let known = search.known_apart(root, &search.nodes[child].robots);
+        assert!(
+            known[1] > 0.9 * late.time && known[1] == known[2],
+            "{known:?}"
+        );
+        assert!(
+            known[0] < 1e-9,
+            "R1 moves otherwise from the start: {known:?}"
+        );
+        search.check_all(&[child], &());
+        let early = search.collision(child).expect("R1 hits R3");
+        assert_eq!((early.robots.0, early.robots.1), (0, Some(2)));
+        assert!(
+            early.time < 0.8 * late.time,
+            "{} vs {}",
+            early.time,
+            late.time
+        );
+        assert_eq!(Some(early), whole.collision.as_ref());
+    }
+
+    /// Two schedules of one robot move alike up to the last sample they share.
+    #[test]
+    fn schedules_share_their_samples_up_to_the_first_that_differs() {
+        let cell = crate::cell::parse_cell(THREE, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let prepared = prepare(&cell, &SolveOptions::default(), &()).unwrap();
+        let build = |wait: f64| {
+            let legs = vec![Leg { wait, pieces: None }];
+            RobotSchedule::build(&cell, 0, &[0], &Arc::new(legs), &prepared.moves).unwrap()
+        };
+        let (now, later) = (build(0.0), build(2.0));
+        assert_eq!(shared_until(&now, &now), now.samples.last().unwrap().t);
+        // Waiting 2 s more: the same first sample at home, then apart.
+        let shared = shared_until(&now, &later);
+        assert_eq!(shared, now.samples[0].t, "{shared}");
+        let mut moved = now.clone();
+        moved.samples[3].pos.x += 1e-9;
+        assert_eq!(shared_until(&now, &moved), now.samples[2].t);
     }
 }
