@@ -165,7 +165,7 @@ mod tests {
     use super::*;
     use crate::geometry::Vec2;
     use crate::planning::Primitive;
-    use crate::wcp::legs::{default_legs, Leg, Piece};
+    use crate::wcp::legs::{with_leg, Leg, Legs, Piece};
     use crate::wcp::options::SolveOptions;
     use crate::wcp::prepare::{prepare, StageTimes};
     use crate::wcp::schedule::RobotSchedule;
@@ -184,6 +184,26 @@ mod tests {
         "tasks": [{"name": "t1", "at": [4, 0, 0], "duration": 1.0, "robots": ["R1"]}]
     }"#;
 
+    /// Node `root`'s legs and robots with R1 driving along `path` on its first leg instead.
+    fn r1_along(search: &Search, root: usize, path: &[Vec2]) -> (Legs, Vec<Arc<RobotSchedule>>) {
+        let (node, moves) = (&search.nodes[root], &search.prepared.moves);
+        let primitive = Primitive {
+            path: path.to_vec(),
+            theta: 0.0,
+            turn: 0.0,
+        };
+        let motion = moves.timed(0, &[primitive]);
+        let leg = Leg {
+            wait: 0.0,
+            pieces: Some(vec![Piece::Go { motion, scale: 1.0 }].into()),
+        };
+        let legs = with_leg(&node.legs, 0, 0, leg);
+        let r1 = RobotSchedule::build(search.cell, 0, &node.routes[0], &legs[0], moves).unwrap();
+        let mut robots = node.robots.clone();
+        robots[0] = Arc::new(r1);
+        (legs, robots)
+    }
+
     /// The fixtures are left out of a changed schedule's check only while every motion is
     /// certified clear of them: a node whose motion goes through the wall anyway (a remedy
     /// that broke that promise) is checked whole once its robots are found apart, and is
@@ -201,29 +221,7 @@ mod tests {
         search.check_all(&[root], &());
         assert_eq!(search.best, Some(root), "round the wall: free");
         // R1 straight through the wall.
-        let through = prepared.moves.timed(
-            0,
-            &[Primitive {
-                path: vec![Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0)],
-                theta: 0.0,
-                turn: 0.0,
-            }],
-        );
-        let leg = Leg {
-            wait: 0.0,
-            pieces: Some(
-                vec![Piece::Go {
-                    motion: through,
-                    scale: 1.0,
-                }]
-                .into(),
-            ),
-        };
-        let mut legs = default_legs(2);
-        legs[0] = Arc::new(vec![leg]);
-        let r1 = RobotSchedule::build(&cell, 0, &routes[0], &legs[0], &prepared.moves).unwrap();
-        let mut robots = search.nodes[root].robots.clone();
-        robots[0] = Arc::new(r1);
+        let (legs, robots) = r1_along(&search, root, &[Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0)]);
         let child = search.add(Node::by_hand(root, &routes, legs, robots));
         let makespan = search.nodes[child].makespan;
         assert!(
@@ -276,33 +274,8 @@ mod tests {
             .clone();
         assert_eq!((late.robots.0, late.robots.1), (0, Some(1)));
         // R1 by way of R3's place.
-        let by_r3 = prepared.moves.timed(
-            0,
-            &[Primitive {
-                path: vec![
-                    Vec2::new(0.0, 0.0),
-                    Vec2::new(3.0, 1.8),
-                    Vec2::new(6.0, 0.0),
-                ],
-                theta: 0.0,
-                turn: 0.0,
-            }],
-        );
-        let leg = Leg {
-            wait: 0.0,
-            pieces: Some(
-                vec![Piece::Go {
-                    motion: by_r3,
-                    scale: 1.0,
-                }]
-                .into(),
-            ),
-        };
-        let mut legs = default_legs(3);
-        legs[0] = Arc::new(vec![leg]);
-        let r1 = RobotSchedule::build(&cell, 0, &routes[0], &legs[0], &prepared.moves).unwrap();
-        let mut robots = search.nodes[root].robots.clone();
-        robots[0] = Arc::new(r1);
+        let by_r3 = [(0.0, 0.0), (3.0, 1.8), (6.0, 0.0)].map(|(x, y)| Vec2::new(x, y));
+        let (legs, robots) = r1_along(&search, root, &by_r3);
         let whole = Outcome::of(
             &cell,
             &Schedule::of(robots.clone()),
