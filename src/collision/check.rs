@@ -550,3 +550,19 @@ fn sample_count(body: &super::Body) -> usize {
         crate::motion::Motion::Fixed(_) => 0,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pair known apart up to a time keeps only what of its windows lies after it.
+    #[test]
+    fn windows_after_a_time_keep_what_lies_after_it() {
+        assert_eq!(after(None, 2.0), vec![(2.0, f64::INFINITY)]);
+        let w = vec![(0.0, 1.0), (1.5, 3.0), (4.0, 5.0)];
+        assert_eq!(after(Some(w.clone()), 2.0), vec![(2.0, 3.0), (4.0, 5.0)]);
+        // A window ending at the time holds nothing after it.
+        assert_eq!(after(Some(w.clone()), 3.0), vec![(4.0, 5.0)]);
+        assert_eq!(after(Some(w), 6.0), vec![]);
+    }
+}
