@@ -64,6 +64,11 @@ pub struct CheckOptions {
     /// that spends it before a proof or a witness stops there, and the report says so
     /// ([`CheckReport::budget_exhausted`]): never free.
     pub max_work_per_pair: u64,
+    /// Count the work through the scene's first event exactly (a record per merged
+    /// interval examined), as reports show it. Off, the counters count all the work the
+    /// pairs did, but grazes and unresolved intervals, which certify the report, still count
+    /// through the first event only: for checks whose counters nobody reads.
+    pub counters: bool,
 }
 
 impl CheckOptions {
@@ -93,6 +98,7 @@ impl Default for CheckOptions {
             walk: WalkTolerances::default(),
             per_pair: false,
             max_work_per_pair: DEFAULT_MAX_WORK_PER_PAIR,
+            counters: true,
         }
     }
 }
@@ -346,6 +352,7 @@ fn check_in_pool(scene: &Scene, opts: &CheckOptions, known: &[f64]) -> CheckRepo
         start: horizon.0,
         walk: opts.walk,
         max_work: opts.max_work_per_pair,
+        counters: opts.counters,
     };
     let all_pairs = scene.pair_count();
     let pairs = if all_pairs < BROAD_PHASE_MIN_PAIRS {

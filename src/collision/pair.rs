@@ -98,6 +98,8 @@ pub struct PairCheck<'a> {
     reached: usize,
     /// `(start of merged interval, counters before it)` for every interval examined but the
     /// first: that one starts at the horizon's start, at or before any time asked about.
+    /// Without every counter ([`PairSettings::counters`]), only for those after which the
+    /// grazes or unresolved intervals changed, and the last.
     log: Vec<(f64, Stats)>,
     /// What the check found, once it is over.
     found: Option<PairOutcome>,
@@ -238,7 +240,7 @@ impl<'a> PairCheck<'a> {
             }
             let k = *reached;
             if k > 1 {
-                log.push((from, *stats));
+                record(log, (from, *stats), s.counters);
             }
             stats.intervals += 1;
             if std::mem::take(&mut stale) {
@@ -291,18 +293,39 @@ impl<'a> PairCheck<'a> {
     /// The work done on the merged intervals that start at or before `t`, a time at or after
     /// the horizon's start. When `t` is the scene's first event, this does not depend on how
     /// the pairs were scheduled on threads: every pair examines those intervals whatever the
-    /// others found.
+    /// others found. Without every counter ([`PairSettings::counters`]), only the grazes
+    /// and unresolved intervals are those through `t`; the rest may count later work.
     pub fn stats_through(&self, t: f64) -> Stats {
-        match self.log.iter().find(|(start, _)| *start > t) {
-            Some((_, before)) => *before,
-            None => self.stats,
-        }
+        through(&self.log, self.stats, t)
     }
 
     /// Number of merged intervals of the pair over the whole horizon. Counting those not
     /// examined walks the rest of the grid, without poses: only reports that list pairs ask.
     pub fn merged_intervals(&self) -> usize {
         self.reached + self.grid.clone().count_rest()
+    }
+}
+
+/// Records `entry`, the start of a merged interval and the counters before it, in `log`.
+/// With every counter, each; else only grazes and unresolved intervals are asked for through
+/// a time, and a record after which neither changed is replaced.
+fn record(log: &mut Vec<(f64, Stats)>, entry: (f64, Stats), counters: bool) {
+    let now = &entry.1;
+    let changed = |(_, before): &(f64, Stats)| {
+        (before.grazing, before.unresolved) != (now.grazing, now.unresolved)
+    };
+    match log.last_mut() {
+        Some(last) if !counters && !changed(last) => *last = entry,
+        _ => log.push(entry),
+    }
+}
+
+/// The counters through time `t` from `log` (see [`record`]): those before the first
+/// interval that starts after `t`, else all of them (`total`).
+fn through(log: &[(f64, Stats)], total: Stats, t: f64) -> Stats {
+    match log.iter().find(|(start, _)| *start > t) {
+        Some((_, before)) => *before,
+        None => total,
     }
 }
 
@@ -347,4 +370,40 @@ fn links_of_arms<'s>(
         _ => None,
     };
     [link(a, after_a), link(b, after_b)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Without every counter, the log is short and still says how many grazes and unresolved
+    /// intervals came through any time, as the full log does.
+    #[test]
+    fn a_lean_log_keeps_the_grazes_through_any_time() {
+        // Intervals 2..=9 start at t = 1, 2, ...; interval k does k bisections, a graze in
+        // intervals 3 and 6, an unresolved one in 8.
+        let (mut full, mut lean) = (Vec::new(), Vec::new());
+        let mut stats = Stats::default();
+        for k in 2..=9u64 {
+            let entry = ((k - 1) as f64, stats);
+            record(&mut full, entry, true);
+            record(&mut lean, entry, false);
+            stats.intervals += 1;
+            stats.bisections += k;
+            stats.grazing += u64::from(k == 3 || k == 6);
+            stats.unresolved += u64::from(k == 8);
+        }
+        assert_eq!(full.len(), 8);
+        assert!(lean.len() < 5, "{}", lean.len());
+        for t in (0..20).map(|k| 0.5 * k as f64) {
+            let (a, b) = (through(&full, stats, t), through(&lean, stats, t));
+            assert_eq!(
+                (a.grazing, a.unresolved),
+                (b.grazing, b.unresolved),
+                "t = {t}"
+            );
+        }
+        // The full log has every counter through a time: interval 2's 2 bisections.
+        assert_eq!(through(&full, stats, 1.5).bisections, 2);
+    }
 }

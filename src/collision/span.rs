@@ -21,6 +21,9 @@ pub struct PairSettings {
     pub walk: WalkTolerances,
     /// Work budget of the pair: evaluations of η (merged interval ends, bisections, looks).
     pub max_work: u64,
+    /// Whether every counter must be known through any time (see
+    /// [`super::CheckOptions::counters`]), or only grazes and unresolved intervals.
+    pub counters: bool,
 }
 
 impl PairSettings {

@@ -439,6 +439,25 @@ fn check_scene(spec: &SceneSpec) -> Result<(), TestCaseError> {
         prop_assert!(again.stats.intervals <= report.stats.intervals);
     }
 
+    // (g) Without every counter, the same verdict and first contact, and the same grazes
+    // and unresolved intervals through it (which certify the report).
+    let lean = check(
+        &scene,
+        &CheckOptions {
+            counters: false,
+            ..opts
+        },
+    );
+    prop_assert_eq!(&lean.first_contact, &report.first_contact);
+    prop_assert_eq!(
+        (lean.safe_until, lean.certified),
+        (report.safe_until, report.certified)
+    );
+    prop_assert_eq!(
+        (lean.stats.grazing, lean.stats.unresolved),
+        (report.stats.grazing, report.stats.unresolved)
+    );
+
     // (d) The report does not depend on the number of threads.
     same_on_any_threads(&scene, &opts, &report)
 }

@@ -18,6 +18,7 @@ fn settings(scene: &Scene, delta: f64) -> PairSettings {
         start: t0,
         walk: Default::default(),
         max_work: crate::collision::DEFAULT_MAX_WORK_PER_PAIR,
+        counters: true,
     }
 }
 

@@ -32,7 +32,12 @@ impl Outcome {
                 .map(|r| known[r])
                 .collect(),
         };
-        let report = schedule.check_known(&scene, opts, &known);
+        // The counters of a check of robots only are read by no one.
+        let opts = CheckOptions {
+            counters: whole && opts.counters,
+            ..*opts
+        };
+        let report = schedule.check_known(&scene, &opts, &known);
         let collision = schedule.collision(cell, &report);
         Outcome {
             report,
