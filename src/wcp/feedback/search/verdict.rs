@@ -142,24 +142,15 @@ impl Search<'_> {
 /// The time of the last sample two schedules of one robot share from the start, before
 /// which they move alike (−∞ when their first samples differ).
 fn shared_until(a: &RobotSchedule, b: &RobotSchedule) -> f64 {
-    let common = |n: usize| n.checked_sub(1);
+    /// The last of the items two lists share from the start.
+    fn last_shared<'s, T: PartialEq>(a: &'s [T], b: &[T]) -> Option<&'s T> {
+        let shared = a.iter().zip(b).take_while(|(x, y)| x == y);
+        shared.last().map(|(x, _)| x)
+    }
     let last = match a.joints.is_empty() && b.joints.is_empty() {
-        true => common(
-            a.samples
-                .iter()
-                .zip(&b.samples)
-                .take_while(|(x, y)| x == y)
-                .count(),
-        )
-        .map(|k| a.samples[k].t),
-        false => common(
-            a.joints
-                .iter()
-                .zip(&b.joints)
-                .take_while(|(x, y)| x == y)
-                .count(),
-        )
-        .map(|k| a.joints[k].t),
+        true => last_shared(&a.samples, &b.samples).map(|s| s.t),
+        // An arm moves as its joints do.
+        false => last_shared(&a.joints, &b.joints).map(|q| q.t),
     };
     last.unwrap_or(f64::NEG_INFINITY)
 }
