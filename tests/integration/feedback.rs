@@ -376,20 +376,23 @@ fn the_search_is_the_same_on_one_two_and_four_threads() {
 }
 
 /// On a cell of 100 to 199 tasks a re-sequencing is a local repair (`search/pending.rs`,
-/// `LOCAL_RESEQUENCE_FROM_TASKS`): `workpiece-3` (10 robots, 100 tasks) reaches the
-/// benchmarks' 21.78 within 114 schedules (ceilings, not pins). It reached 21.50 before the
-/// sequencer exchanged route ends: the blind plan is another one now, and a repair, which
-/// makes no such exchanges (`SequencerOptions::route_exchanges`), finds 21.78 from it.
+/// `LOCAL_RESEQUENCE_FROM_TASKS`), and a repair makes no route-end exchanges
+/// (`SequencerOptions::route_exchanges`): from its blind plan (21.50) `workpiece-3` (10
+/// robots, 100 tasks) is certified at 21.78 by such repairs alone, after 99 schedules. The
+/// search's second pass, once nothing is left, asks the re-sequencings that led there
+/// again with exchanges (`Search::widen_repairs`) and certifies the blind plan's 21.50
+/// (pinned), as the search did before the sequencer exchanged route ends; the schedules
+/// checked are a ceiling, not a pin.
 #[test]
 fn a_resequencing_on_a_hundred_task_cell_is_a_local_repair() {
     let solved = solve(&conflict_cell(ConflictKind::Workpiece, 3));
     assert!(solved.collision_free);
     assert!(
-        solved.schedule.makespan <= 21.779,
+        (solved.schedule.makespan - 21.50).abs() < 5e-3,
         "{}",
         solved.schedule.makespan
     );
-    assert!(solved.nodes <= 114, "{} schedules checked", solved.nodes);
+    assert!(solved.nodes <= 112, "{} schedules checked", solved.nodes);
 }
 
 /// A repair makes no route-end exchanges (`SequencerOptions::route_exchanges`): they move

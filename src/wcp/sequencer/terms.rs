@@ -98,7 +98,9 @@ pub struct SequencerOptions {
     /// robots, whose schedules must all be checked again. With exchanges in every round of
     /// a repair, 4 arms x 40 tasks (`generate --kind scara --seed 1`) took 9.3 s instead of
     /// 3.9 (21.801 instead of 21.759), and `workpiece-4` of the conflict cells 1,628
-    /// schedules instead of 443; only `workpiece-3` gained (21.50 instead of 21.78). With
+    /// schedules instead of 443; only `workpiece-3` gained (21.50 instead of 21.78, which
+    /// the search's second pass now finds by asking again, with exchanges, only the
+    /// repairs that led to its best schedule). With
     /// exchanges at local optima (as the default solve makes them), `workpiece-4` took 605
     /// schedules instead of 581.
     pub route_exchanges: bool,

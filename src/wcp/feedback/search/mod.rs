@@ -25,7 +25,9 @@
 //! rounds as there are conflicts, never a growing pile of waits (every child clears the
 //! collision it answers); then it dives again from each other choice, the choices near the
 //! root first, where a poor choice costs most. Nodes that cannot beat the best certified
-//! makespan are dropped; when none is left, the answer is the best the remedies can give.
+//! makespan are dropped; when none is left, the re-sequencings that led to the best are
+//! asked again with route-end exchanges (`pending.rs`), and when nothing is left after
+//! them either, the answer is the best the remedies can give.
 //! When the search ends, every schedule that was the best when found has its slack (waits,
 //! holds, slowed motions) shortened as far as the other robots allow (`tighten.rs`), and the
 //! answer is the shortest of them. Ties go to the node made first, so that the result is
@@ -157,10 +159,10 @@ const SAME_MAKESPAN: f64 = 1e-9;
 /// What a re-sequencing asks the sequencer, which answers it deterministically: the routes
 /// it departs from, the conflicts to avoid (sorted), the preparation whose configurations
 /// it plans with (its address: every preparation lives as long as the search, held by the
-/// nodes), and the rounds of local search it is given (see [`Search::resequencer`]).
-/// Parents whose routes agree and whose legs differ ask the same question: a third of the
-/// re-sequencings of a 4-arm cell of 40 tasks.
-type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize);
+/// nodes), the rounds of local search it is given and whether it exchanges route ends (see
+/// [`Search::resequencer`]). Parents whose routes agree and whose legs differ ask the same
+/// question: a third of the re-sequencings of a 4-arm cell of 40 tasks.
+type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize, bool);
 
 /// A collision as the remedies see it: a digest of every route and of the two robots' legs
 /// (in the pair's order), the preparation's address, the contact's time, and whether the
@@ -199,6 +201,12 @@ struct Search<'a> {
     furthest: Option<usize>,
     /// Colliding nodes left unexpanded at the limit of rounds.
     capped: usize,
+    /// The re-sequencings costed so far, each by the node it became and as it was queued:
+    /// asked again with route-end exchanges once the queue is empty
+    /// ([`Search::widen_repairs`]).
+    repairs: Vec<(usize, Node)>,
+    /// Whether re-sequencings exchange route ends (the search's second pass).
+    exchanging: bool,
 }
 
 /// Solves the cell by searching over remedies (see the module documentation).
@@ -220,8 +228,9 @@ pub(super) fn solve(
     }
     let started = Instant::now();
     let mut stop = search.run(started, progress)?;
-    // With time left under a time limit: a refined plan, searched in turn.
-    while stop.is_none() && search.refine(&mut blind, progress)? {
+    // With time left under a time limit: a refined plan, searched in turn; once nothing is
+    // left, the re-sequencings asked again with route-end exchanges.
+    while stop.is_none() && (search.refine(&mut blind, progress)? || search.widen_repairs()) {
         stop = search.run(started, progress)?;
     }
     search.tighten_all(progress);
@@ -255,6 +264,8 @@ impl<'a> Search<'a> {
             incumbents: Vec::new(),
             furthest: None,
             capped: 0,
+            repairs: Vec::new(),
+            exchanging: false,
         }
     }
 }
