@@ -153,6 +153,9 @@ pub struct Remedies {
     pub detour: bool,
     /// Step aside to a parking pose.
     pub step_aside: bool,
+    /// Pull in at a passing place beside the way (a bay off a corridor) and let the other
+    /// pass: in the search's second pass only, once its queue is empty.
+    pub pass_aside: bool,
     /// Time two robots' moves together in their coordination diagram, for a pair that
     /// collides again on the search's branch.
     pub tune: bool,
@@ -174,19 +177,21 @@ impl Remedies {
         slow: true,
         detour: true,
         step_aside: true,
+        pass_aside: true,
         tune: true,
         convoy: true,
         reconfigure: true,
     };
 
     /// The names of `--remedies`, in this order.
-    pub const NAMES: [&'static str; 9] = [
+    pub const NAMES: [&'static str; 10] = [
         "resequence",
         "wait",
         "pause",
         "slow",
         "detour",
         "step-aside",
+        "pass-aside",
         "tune",
         "convoy",
         "reconfigure",
@@ -210,6 +215,7 @@ impl Remedies {
             slow: false,
             detour: false,
             step_aside: false,
+            pass_aside: false,
             tune: false,
             convoy: false,
             reconfigure: false,
@@ -222,6 +228,7 @@ impl Remedies {
                 "slow" => &mut set.slow,
                 "detour" => &mut set.detour,
                 "step-aside" => &mut set.step_aside,
+                "pass-aside" => &mut set.pass_aside,
                 "tune" => &mut set.tune,
                 "convoy" => &mut set.convoy,
                 "reconfigure" => &mut set.reconfigure,

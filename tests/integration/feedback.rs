@@ -234,8 +234,9 @@ fn a_detour_goes_round_a_robot_that_is_working() {
     // There and back.
     assert_eq!(detours.len(), 2, "{:?}", remedies(&solved));
     assert!(solved.schedule.makespan <= solved.blind_makespan * 1.001);
-    // Without going round, R2 must start its weld after R1 has passed: some 15 s later.
-    let without = solve_with(&cell, &all_but("detour"));
+    // Without going round (nor pulling in beside its way, from where it may go round too),
+    // R2 must start its weld after R1 has passed: some 15 s later.
+    let without = solve_with(&cell, &none_of(&["detour", "pass-aside"]));
     assert!(without.collision_free);
     assert!(without.schedule.makespan > solved.schedule.makespan + 10.0);
 }
@@ -630,6 +631,35 @@ fn the_doorways_a_weaker_search_loses_are_solved() {
             solved.schedule.makespan
         );
     }
+}
+
+/// Two robots swap the rooms at the ends of a corridor one robot wide with a bay off one
+/// side (`cells/passing-bay-cell.json`). The first pass has one robot step aside at home
+/// while the other crosses the whole corridor, each way: 50.923. Once its queue is empty,
+/// the second pass offers passing places beside the way (`remedies/step_aside.rs`): each
+/// time one robot pulls into the bay while the other goes by, 41.834 (pinned), and every
+/// parking pose of the answer lies inside the bay. Without `pass-aside`, 50.923 again.
+#[test]
+fn robots_pass_each_other_at_a_bay_off_the_corridor() {
+    let cell = shipped_cell("passing-bay-cell.json");
+    let solved = solve(&cell);
+    assert!(solved.collision_free, "{:?}", solved.failure);
+    let makespan = solved.schedule.makespan;
+    assert!((makespan - 41.834).abs() < 2e-3, "{makespan}");
+    let parks: Vec<_> = (remedies(&solved).into_iter())
+        .filter_map(|r| match &r.kind {
+            RemedyKind::StepAside { park, .. } => Some(park.pos),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(parks.len(), 2, "{parks:?}");
+    let in_bay =
+        |p: &workcell::geometry::Vec2| (4.5..5.7).contains(&p.x) && (0.5..1.7).contains(&p.y);
+    assert!(parks.iter().all(in_bay), "{parks:?}");
+    let without = solve_with(&cell, &all_but("pass-aside"));
+    assert!(without.collision_free);
+    let makespan = without.schedule.makespan;
+    assert!((makespan - 50.923).abs() < 2e-3, "{makespan}");
 }
 
 /// `tune` is a last resort, checked only when the search takes it: offered with the other

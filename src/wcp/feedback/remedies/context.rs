@@ -22,6 +22,9 @@ pub(crate) struct Ctx<'a> {
     /// A changed robot that ends at or after this makes a child the search drops (it
     /// cannot beat the best certified schedule): the remedies stop refining it.
     pub cap: f64,
+    /// Whether a robot on its way may pull in at a passing place (the search's second
+    /// pass, see `step_aside::pass_aside`).
+    pub passing: bool,
 }
 
 /// The schedule a remedy changes: routes, legs and every robot's timed plan.
@@ -52,12 +55,18 @@ impl<'a> Ctx<'a> {
             moves,
             opts,
             cap: f64::INFINITY,
+            passing: false,
         }
     }
 
     /// This context with children capped at `cap` (see [`Ctx::cap`]).
     pub fn capped(self, cap: f64) -> Self {
         Ctx { cap, ..self }
+    }
+
+    /// This context with passing places offered or not (see [`Ctx::passing`]).
+    pub fn passing(self, passing: bool) -> Self {
+        Ctx { passing, ..self }
     }
 
     /// Robot `x`'s schedule with leg `m` replaced; `None` if it cannot be timed.

@@ -12,6 +12,9 @@
 //!   good) goes to a free parking pose nearby, waits there and goes on (or back home); a
 //!   robot on its way leaves its start node for a parking pose near it instead, and lets
 //!   the other pass;
+//! * **pass aside**: a robot on its way pulls in at a passing place beside it, short of
+//!   the contact (a bay off a corridor), holds there the least that lets the other pass,
+//!   and goes on; offered only in the search's second pass (`search/pending.rs`);
 //! * **make way**, of both robots at once: the one standing in the other's way (at work, or
 //!   waiting at a node) leaves ahead of it, round where it comes from, and the other waits
 //!   (a last resort, like the detour's);
@@ -48,12 +51,12 @@ use convoy::convoy;
 use detour::detour;
 use make_way::make_way;
 use pause::{pause, slow};
-use step_aside::step_aside;
+use step_aside::{pass_aside, step_aside};
 use tune::tune;
 
 /// The candidates for collision `c`: for each robot of the pair, each remedy allowed that
 /// separates it from the other, in a fixed order (first robot first; wait, pause, slow,
-/// detour, step aside, make way), then the two tuned together. Evaluated in parallel,
+/// detour, step aside, make way, pass aside), then the two tuned together. Evaluated in parallel,
 /// collected in that order.
 pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> Vec<Child> {
     let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
@@ -64,7 +67,7 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> 
     let set = ctx.opts.search.remedies;
     type Job = fn(&Ctx, &View, &Side) -> Option<Child>;
     // An arm pauses, detours and steps aside in joint space.
-    let kinds = |x: usize| -> [(bool, Job); 6] {
+    let kinds = |x: usize| -> [(bool, Job); 7] {
         let arm = ctx.cell.robots[x].as_arm().is_some();
         [
             (set.wait, wait),
@@ -77,6 +80,7 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> 
             ),
             // Two robots at once: a detour of the one that leaves, a wait of the other.
             (set.detour, make_way),
+            (set.pass_aside && ctx.passing && !arm, pass_aside),
         ]
     };
     let t = c.time;

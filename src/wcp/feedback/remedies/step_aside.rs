@@ -5,7 +5,6 @@ use super::context::{
     apart, body_radius, by_parking, child, earliest, horizons, least_clearing, leg_nodes,
     leg_window, occupancy, Child, Ctx, Side, View,
 };
-use crate::collision::Body;
 use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
 use crate::motion::{Motion, Pose};
 use crate::wcp::feedback::{Remedy, RemedyKind};
@@ -19,18 +18,86 @@ const PARK_RINGS: [f64; 5] = [2.0, 3.0, 4.5, 6.5, 9.0];
 const PARK_DIRECTIONS: usize = 12;
 /// Parking poses examined in full (planned, timed, checked) per remedy, nearest first.
 const PARK_TRIES: usize = 3;
+/// Offsets of a passing place from the robot's way, in its radii: a robot of radius r
+/// beside another of radius r needs more than 2r between their centres.
+const PASS_OFFSETS: [f64; 5] = [2.0, 2.25, 2.5, 2.75, 3.0];
+/// Points of the way back from the contact where passing places are looked for, at most.
+const MAX_PASS_STEPS: usize = 200;
 
 /// Poses on rings about `q` where robot `x` is clear of the fixtures and of where robot `y`
 /// passes over `[t0, t1]`: the discs a rigid `y` sweeps, the region an arm sweeps.
-fn parking_poses(
-    ctx: &Ctx,
+fn parking_poses<'a>(
+    ctx: &Ctx<'a>,
     view: &View,
     x: usize,
     y: usize,
     q: Pose,
     (t0, t1): (f64, f64),
-) -> Vec<Pose> {
+) -> impl Iterator<Item = Pose> + 'a {
+    let rx = ctx.cell.rigid(x).shape.radius();
+    let on_rings = PARK_RINGS.iter().flat_map(move |ring| {
+        (0..PARK_DIRECTIONS).map(move |k| {
+            let (s, c) = (k as f64 * std::f64::consts::TAU / PARK_DIRECTIONS as f64).sin_cos();
+            Pose {
+                pos: q.pos + ring * rx * Vec2::new(c, s),
+                theta: q.theta,
+            }
+        })
+    });
+    free_poses(ctx, view, x, y, (t0, t1), on_rings)
+}
+
+/// Poses beside robot `x`'s way on its leg in play, a passing place: walked back from where
+/// it is at the contact to where the leg starts, every radius of the robot, at
+/// [`PASS_OFFSETS`] of its radius either side, those clear as a parking pose is (see
+/// [`free_poses`]), nearest the contact first.
+fn passing_places<'a>(
+    ctx: &Ctx<'a>,
+    view: &View,
+    side: &Side,
+    (t0, t1): (f64, f64),
+    start: f64,
+) -> impl Iterator<Item = Pose> + 'a {
+    let x = side.x;
+    let rx = ctx.cell.rigid(x).shape.radius();
+    let xs = &view.robots[x];
+    // The way back from the contact, a point about every radius of arc (at full speed).
+    let dt = rx / ctx.cell.rigid(x).max_speed;
+    let steps = ((side.t - start) / dt)
+        .ceil()
+        .clamp(0.0, MAX_PASS_STEPS as f64) as usize;
+    let way: Vec<Pose> = (0..=steps)
+        .map(|k| xs.pose_at((side.t - k as f64 * dt).max(start)))
+        .collect();
+    let moving = |w: &&[Pose]| (w[0].pos - w[1].pos).norm() > 0.0;
+    let beside: Vec<Pose> = (way.windows(2).filter(moving))
+        .flat_map(|w| {
+            let along = (w[0].pos - w[1].pos).normalize();
+            let normal = Vec2::new(-along.y, along.x);
+            PASS_OFFSETS.iter().flat_map(move |k| {
+                [1.0, -1.0].map(|sign| Pose {
+                    pos: w[1].pos + sign * k * rx * normal,
+                    theta: w[1].theta,
+                })
+            })
+        })
+        .collect();
+    free_poses(ctx, view, x, side.y, (t0, t1), beside.into_iter())
+}
+
+/// The poses of `tried` where robot `x` is clear of the fixtures (each part by 2δ) and of
+/// where robot `y` passes over `[t0, t1]`: the discs a rigid `y` sweeps, the region an arm
+/// sweeps. Lazy, in the order tried: a remedy stops once it has the few it tries in full.
+fn free_poses<'a>(
+    ctx: &Ctx<'a>,
+    view: &View,
+    x: usize,
+    y: usize,
+    (t0, t1): (f64, f64),
+    tried: impl Iterator<Item = Pose> + 'a,
+) -> impl Iterator<Item = Pose> + 'a {
     let cell = ctx.cell;
+    let delta = cell.delta;
     let rx = cell.rigid(x).shape.radius();
     let ry = body_radius(cell, y);
     let ys = &view.robots[y];
@@ -45,45 +112,46 @@ fn parking_poses(
         .map(|s| s.pos)
         .chain([ys.pose_at(t0).pos, ys.pose_at(t1).pos])
         .collect();
-    let obstacles: Vec<Body> = ctx.moves.obstacles().to_vec();
+    // Every fixture part where it stands, with a disc about its vertices: a pose farther
+    // from it than the disc and the robot's radius needs no closest features.
+    let fixtures: Vec<(Posed, Vec2, f64)> = (ctx.moves.obstacles().iter())
+        .filter_map(|o| match &o.motion {
+            Motion::Fixed(at) => Some((o, *at)),
+            _ => None,
+        })
+        .flat_map(|(o, at)| {
+            let pieces = (o.parts.as_ref()).map_or(std::slice::from_ref(&o.shape), |p| p.parts());
+            pieces.iter().map(move |q| {
+                let posed = Posed::new(q, at.pos.x, at.pos.y, at.theta);
+                let corners: Vec<Vec2> = (0..posed.len()).map(|k| posed.vertex(k)).collect();
+                let centre = corners.iter().sum::<Vec2>() / corners.len() as f64;
+                let reach = corners
+                    .iter()
+                    .map(|c| (c - centre).norm())
+                    .fold(0.0, f64::max);
+                (posed, centre, reach)
+            })
+        })
+        .collect();
     let tol = WalkTolerances::default();
+    let pieces = cell.rigid(x).pieces();
     // Part by part: a robot of parts may park inside a bay its hull would not fit.
-    let clear_of_fixtures = |p: Pose| {
-        cell.rigid(x).pieces().iter().all(|piece| {
+    let clear_of_fixtures = move |p: Pose| {
+        pieces.iter().all(|piece| {
             let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
-            obstacles.iter().all(|o| {
-                let Motion::Fixed(at) = &o.motion else {
-                    return true;
-                };
-                let pieces = o
-                    .parts
-                    .as_ref()
-                    .map_or(std::slice::from_ref(&o.shape), |p| p.parts());
-                pieces.iter().all(|q| {
-                    let other = Posed::new(q, at.pos.x, at.pos.y, at.theta);
-                    closest_features(&posed, &other, None, &tol).distance > 2.0 * cell.delta
-                })
+            fixtures.iter().all(|(other, centre, reach)| {
+                (p.pos - centre).norm() > reach + rx + 2.0 * delta
+                    || closest_features(&posed, other, None, &tol).distance > 2.0 * delta
             })
         })
     };
-    let mut out = Vec::new();
-    for ring in PARK_RINGS {
-        for k in 0..PARK_DIRECTIONS {
-            let (s, c) = (k as f64 * std::f64::consts::TAU / PARK_DIRECTIONS as f64).sin_cos();
-            let p = Pose {
-                pos: q.pos + ring * rx * Vec2::new(c, s),
-                theta: q.theta,
-            };
-            let away = match &swept {
-                Some(region) => apart(&[(cell.rigid(x).pieces(), p)], region, 2.0 * cell.delta),
-                None => (passes.iter()).all(|g| (g - p.pos).norm() > rx + ry + 2.0 * cell.delta),
-            };
-            if away && clear_of_fixtures(p) {
-                out.push(p);
-            }
-        }
-    }
-    out
+    tried.filter(move |&p| {
+        let away = match &swept {
+            Some(region) => apart(&[(pieces, p)], region, 2.0 * delta),
+            None => (passes.iter()).all(|g| (g - p.pos).norm() > rx + ry + 2.0 * delta),
+        };
+        away && clear_of_fixtures(p)
+    })
 }
 
 /// The leg of `side.x` that a step aside changes, if it can step aside where it is.
@@ -104,17 +172,51 @@ pub(super) fn aside_leg(view: &View, side: &Side) -> Option<usize> {
 /// A robot standing in the other's way goes to a parking pose nearby, waits there, and goes
 /// on to where its leg leads (or back home).
 pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
-    let t = side.t;
-    let x = side.x;
-    let route = &view.routes[x];
+    let (t, x) = (side.t, side.x);
     let m = aside_leg(view, side)?;
+    let q = match side.sx.activity {
+        Activity::Move { .. } => node_pose(ctx.cell, x, leg_nodes(view, x, m).0),
+        _ => view.robots[x].pose_at(t),
+    };
+    let keep_wait = matches!(side.sx.activity, Activity::Done);
+    park(ctx, view, side, m, keep_wait, |window| {
+        parking_poses(ctx, view, x, side.y, q, window)
+    })
+}
+
+/// A robot on its way, in the other's way further on, pulls in at a passing place beside
+/// its way (a bay off a corridor, the mouth of a side aisle), lets the other pass, and goes
+/// on; it leaves when it did. Offered only in the search's second pass: as one more child
+/// of every collision it spread the budget thinner and cost cells their answers.
+pub(super) fn pass_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
+    if !matches!(side.sx.activity, Activity::Move { .. }) {
+        return None;
+    }
+    let m = side.sx.leg?;
+    let start = leg_window(&view.robots[side.x], m).0;
+    park(ctx, view, side, m, true, |window| {
+        passing_places(ctx, view, side, window, start)
+    })
+}
+
+/// Robot `side.x`'s leg `m` by way of the parking pose among `poses` (given the window over
+/// which the other robot must be clear of it) that ends it soonest, held there as little as
+/// clears; `keep_wait`: the leg's wait is kept (else the robot leaves at once).
+fn park<I>(
+    ctx: &Ctx,
+    view: &View,
+    side: &Side,
+    m: usize,
+    keep_wait: bool,
+    poses: impl FnOnce((f64, f64)) -> I,
+) -> Option<Child>
+where
+    I: Iterator<Item = Pose>,
+{
+    let x = side.x;
     let (from, to) = leg_nodes(view, x, m);
     let xs = &view.robots[x];
-    let q = match side.sx.activity {
-        Activity::Move { .. } => node_pose(ctx.cell, x, from),
-        _ => xs.pose_at(t),
-    };
-    let t0 = if route.is_empty() {
+    let t0 = if view.routes[x].is_empty() {
         0.0
     } else {
         leg_window(xs, m).0
@@ -123,10 +225,8 @@ pub(super) fn step_aside(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     let until = t0 + horizons.last().copied().unwrap_or(0.0);
     let (a, b) = (node_pose(ctx.cell, x, from), node_pose(ctx.cell, x, to));
     let old = leg(view.legs, x, m).clone();
-    let keep_wait = matches!(side.sx.activity, Activity::Done);
     let bound = Cell::new(ctx.cap);
-    let tried = parking_poses(ctx, view, x, side.y, q, (t.min(t0.max(0.0)), until))
-        .into_iter()
+    let tried = poses((side.t.min(t0.max(0.0)), until))
         .filter_map(|p| {
             let there = ctx.moves.between(x, a, p, &[])?;
             let back = ctx.moves.between(x, p, b, &[])?;
@@ -179,7 +279,8 @@ mod tests {
             );
             let test = TestCell::new(&text, vec![vec![], vec![]]);
             let home = test.cell.rigid(0).home;
-            let poses = parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0));
+            let poses: Vec<Pose> =
+                parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0)).collect();
             let found = poses.iter().any(|p| (p.pos - east).norm() < 1e-9);
             assert_eq!(found, taken, "Y {gap} beyond the radii");
             assert!(
@@ -212,7 +313,8 @@ mod tests {
         let test = TestCell::new(&text, vec![vec![], vec![]]);
         let cell = &test.cell;
         let home = cell.rigid(0).home;
-        let poses = parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0));
+        let poses: Vec<Pose> =
+            parking_poses(&test.ctx(), &test.view(), 0, 1, home, (0.0, 1.0)).collect();
         let east = poses
             .iter()
             .find(|p| (p.pos - Vec2::new(2.0 * radius, 0.0)).norm() < 1e-9)

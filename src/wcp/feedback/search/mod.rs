@@ -41,6 +41,7 @@
 mod answer;
 mod order;
 mod pending;
+mod queue;
 mod roots;
 mod tighten;
 mod verdict;
@@ -57,7 +58,7 @@ use crate::wcp::prepare::{Prepared, Progress, StageTimes};
 use crate::wcp::schedule::{Collision, RobotSchedule};
 use crate::wcp::sequence::sequence_blind;
 use crate::wcp::sequencer::{self, Conflict};
-use order::{Key, Ordered, Rank};
+use order::Key;
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::sync::Arc;
@@ -173,7 +174,7 @@ type Question = (Arc<Vec<Vec<usize>>>, Vec<Conflict>, usize, usize, bool);
 /// expansions of a junction of 4 robots and 8 tasks (28 % when schedules were known by
 /// address only). A convoy reads the other robots' routes too, and replaces their legs
 /// whole.
-type Met = (u128, usize, u64, bool);
+type Met = (u128, usize, u64, bool, bool);
 
 struct Search<'a> {
     cell: &'a Cell,
@@ -203,10 +204,11 @@ struct Search<'a> {
     capped: usize,
     /// The re-sequencings costed so far, each by the node it became and as it was queued:
     /// asked again with route-end exchanges once the queue is empty
-    /// ([`Search::widen_repairs`]).
+    /// ([`Search::widen`]).
     repairs: Vec<(usize, Node)>,
-    /// Whether re-sequencings exchange route ends (the search's second pass).
-    exchanging: bool,
+    /// Whether the search is in its second pass ([`Search::widen`]): re-sequencings
+    /// exchange route ends, and a robot on its way may pull in at a passing place.
+    second_pass: bool,
 }
 
 /// Solves the cell by searching over remedies (see the module documentation).
@@ -230,7 +232,7 @@ pub(super) fn solve(
     let mut stop = search.run(started, progress)?;
     // With time left under a time limit: a refined plan, searched in turn; once nothing is
     // left, the re-sequencings asked again with route-end exchanges.
-    while stop.is_none() && (search.refine(&mut blind, progress)? || search.widen_repairs()) {
+    while stop.is_none() && (search.refine(&mut blind, progress)? || search.widen()) {
         stop = search.run(started, progress)?;
     }
     search.tighten_all(progress);
@@ -265,7 +267,7 @@ impl<'a> Search<'a> {
             furthest: None,
             capped: 0,
             repairs: Vec::new(),
-            exchanging: false,
+            second_pass: false,
         }
     }
 }
@@ -374,23 +376,6 @@ impl Search<'_> {
         self.nodes[id].outcome.as_ref()?.collision.as_ref()
     }
 
-    /// The node's place in the queue.
-    fn key(&self, id: usize) -> Key {
-        let n = &self.nodes[id];
-        (
-            n.discrepancies,
-            n.deviated_at,
-            Reverse(n.depth),
-            Ordered(n.makespan),
-            id,
-        )
-    }
-
-    fn enqueue(&mut self, id: usize) {
-        let key = self.key(id);
-        self.queue.push(Reverse(key));
-    }
-
     /// Whether node `id` may still beat the best certified schedule.
     fn worth(&self, id: usize) -> bool {
         self.best.is_none_or(|b| {
@@ -440,13 +425,21 @@ impl Search<'_> {
         let cap = self.best.map_or(f64::INFINITY, |b| {
             self.nodes[b].makespan * (1.0 - SAME_MAKESPAN)
         });
-        let ctx = Ctx::new(self.cell, &prepared.moves, self.opts).capped(cap);
+        let ctx = (Ctx::new(self.cell, &prepared.moves, self.opts))
+            .capped(cap)
+            .passing(self.second_pass);
         let again = self.met_before(id, &c);
         let met = c.robots.1.filter(|_| self.opts.search.remember).map(|b| {
             let assignment = prepared.moves.assignment();
             let digest = pair_fingerprint(view.routes, view.legs, assignment, (c.robots.0, b));
             let prepared_at = prepared as *const Prepared as usize;
-            (digest, prepared_at, c.time.to_bits(), again)
+            (
+                digest,
+                prepared_at,
+                c.time.to_bits(),
+                again,
+                self.second_pass,
+            )
         });
         let known = met.as_ref().and_then(|key| self.remedied.get(key));
         let mut learnt = None;
@@ -576,27 +569,6 @@ impl Search<'_> {
                 prepared: own,
             };
             self.queue_resequencing(parent, &c);
-        }
-    }
-
-    /// Ranks checked children, best first: the best continues the parent's line, every other
-    /// one is a discrepancy; the colliding ones are queued.
-    fn rank_and_queue(&mut self, made: Vec<usize>, depth: usize) {
-        let rank = |k: usize| Rank {
-            makespan: self.nodes[k].makespan,
-            collision: self.collision(k).map(|c| c.time),
-            id: k,
-        };
-        let mut ranked: Vec<usize> = made;
-        ranked.sort_by(|&a, &b| rank(a).cmp_children(&rank(b)));
-        for &k in ranked.iter().skip(1) {
-            self.nodes[k].discrepancies += 1;
-            self.nodes[k].deviated_at = depth;
-        }
-        for k in ranked {
-            if self.collision(k).is_some() {
-                self.enqueue(k);
-            }
         }
     }
 }

@@ -44,7 +44,7 @@ impl Search<'_> {
     fn resequencer(&self, conflict: &Conflict, routes: &[Vec<usize>]) -> SolveOptions {
         let mut opts = crate::wcp::sequence::repairing(self.opts);
         opts.sequencer.target = Some(self.blind_makespan);
-        opts.sequencer.route_exchanges = self.exchanging;
+        opts.sequencer.route_exchanges = self.second_pass;
         let share = (opts.sequencer.iterations / RESEQUENCE_SHARE).max(1);
         let tasks = self.cell.tasks.len();
         let local = (LOCAL_RESEQUENCE_FROM_TASKS..sequencer::GRANULAR_FROM_TASKS).contains(&tasks);
@@ -71,7 +71,7 @@ impl Search<'_> {
         if let Err(k) = conflicts.binary_search(&conflict) {
             conflicts.insert(k, conflict);
         }
-        if !self.exchanging {
+        if !self.second_pass {
             let node = &self.nodes[id];
             self.repairs.push((
                 id,
@@ -102,7 +102,7 @@ impl Search<'_> {
             conflicts,
             asked,
             iterations,
-            self.exchanging,
+            self.second_pass,
         );
         let solution = match self.sequenced.get(&question) {
             Some(answer) => answer.clone(),
@@ -189,24 +189,27 @@ impl Search<'_> {
         }
     }
 
-    /// The search's second pass, once its queue is empty: the re-sequencings on the way to
-    /// the best certified schedule (without one, to the schedule whose collision came
-    /// latest) are asked again, this time exchanging route ends (2-opt*,
-    /// [`SequencerOptions::route_exchanges`]), and so is every re-sequencing made from then
-    /// on. A repair that exchanges route ends spreads over more robots, whose schedules must
-    /// all be checked again (4 arms x 40 tasks took 9.3 s instead of 3.9 when every repair
-    /// did; asking every repair of the first pass again, 3.9 s instead of 2.8, for nothing),
-    /// so it comes only when the repairs that stay near their routes have nothing left, and
-    /// only where they led. It only adds schedules: the first pass's answer stays unless one
-    /// is shorter. Whether anything was queued (nothing once the best certified schedule is
-    /// as short as the collision-blind plan, which no re-sequencing is expected to beat).
+    /// The search's second pass, once its queue is empty. On the way to the best certified
+    /// schedule (without one, to the schedule whose collision came latest), every
+    /// re-sequencing is asked again, this time exchanging route ends (2-opt*,
+    /// [`SequencerOptions::route_exchanges`]), and every colliding schedule is expanded
+    /// again, this time with passing places (a robot on its way pulls in beside it and lets
+    /// the other pass, `remedies/step_aside.rs`); both hold for everything made from then
+    /// on. Neither comes sooner: a repair that exchanges route ends spreads over more
+    /// robots, whose schedules must all be checked again (4 arms x 40 tasks took 9.3 s
+    /// instead of 3.9 when every repair did; asking every repair of the first pass again,
+    /// 3.9 s instead of 2.8, for nothing), and passing places offered with the other
+    /// remedies spread the budget thinner and cost cells of the conflict table their
+    /// answers. After the first pass they only add schedules: its answer stays unless one is
+    /// shorter. Whether anything was queued (nothing once the best certified schedule is as
+    /// short as every schedule on its way).
     ///
     /// [`SequencerOptions::route_exchanges`]: crate::wcp::sequencer::SequencerOptions::route_exchanges
-    pub(super) fn widen_repairs(&mut self) -> bool {
-        if self.exchanging {
+    pub(super) fn widen(&mut self) -> bool {
+        if self.second_pass {
             return false;
         }
-        self.exchanging = true;
+        self.second_pass = true;
         let mut line = HashSet::new();
         let mut up = self.best.or(self.furthest);
         while let Some(id) = up {
@@ -220,6 +223,18 @@ impl Search<'_> {
             }
             let id = self.add(node);
             if self.worth(id) {
+                self.enqueue(id);
+                queued = true;
+            }
+        }
+        let mut again: Vec<usize> = line.into_iter().collect();
+        again.sort_unstable();
+        // Without passing places a colliding schedule has no child it did not have.
+        again.retain(|_| self.opts.search.remedies.pass_aside);
+        for id in again {
+            // One at the limit of rounds would only be cut short again.
+            let deep = self.nodes[id].depth + 1 >= self.opts.max_iterations;
+            if self.collision(id).is_some() && self.worth(id) && !deep {
                 self.enqueue(id);
                 queued = true;
             }
