@@ -56,8 +56,8 @@ use tune::tune;
 
 /// The candidates for collision `c`: for each robot of the pair, each remedy allowed that
 /// separates it from the other, in a fixed order (first robot first; wait, pause, slow,
-/// detour, step aside, make way, pass aside), then the two tuned together. Evaluated in parallel,
-/// collected in that order.
+/// detour, step aside, make way, pass aside), then the two tuned together. Evaluated in
+/// parallel, collected in that order.
 pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> Vec<Child> {
     let (Some(b), Some(sb)) = (c.robots.1, c.segments.1) else {
         return Vec::new();

@@ -25,9 +25,10 @@
 //! rounds as there are conflicts, never a growing pile of waits (every child clears the
 //! collision it answers); then it dives again from each other choice, the choices near the
 //! root first, where a poor choice costs most. Nodes that cannot beat the best certified
-//! makespan are dropped; when none is left, the re-sequencings that led to the best are
-//! asked again with route-end exchanges (`pending.rs`), and when nothing is left after
-//! them either, the answer is the best the remedies can give.
+//! makespan are dropped. When none is left, a second pass goes back along the way to the
+//! best: its re-sequencings are asked again with route-end exchanges, and its colliding
+//! schedules expanded again with passing places (`pending.rs`); when nothing is left after
+//! that either, the answer is the best the remedies can give.
 //! When the search ends, every schedule that was the best when found has its slack (waits,
 //! holds, slowed motions) shortened as far as the other robots allow (`tighten.rs`), and the
 //! answer is the shortest of them. Ties go to the node made first, so that the result is
@@ -231,7 +232,7 @@ pub(super) fn solve(
     let started = Instant::now();
     let mut stop = search.run(started, progress)?;
     // With time left under a time limit: a refined plan, searched in turn; once nothing is
-    // left, the re-sequencings asked again with route-end exchanges.
+    // left, the second pass along the way to the best.
     while stop.is_none() && (search.refine(&mut blind, progress)? || search.widen()) {
         stop = search.run(started, progress)?;
     }

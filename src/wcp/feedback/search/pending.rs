@@ -227,10 +227,12 @@ impl Search<'_> {
                 queued = true;
             }
         }
+        // Without passing places a colliding schedule has no child it did not have.
+        if !self.opts.search.remedies.pass_aside {
+            return queued;
+        }
         let mut again: Vec<usize> = line.into_iter().collect();
         again.sort_unstable();
-        // Without passing places a colliding schedule has no child it did not have.
-        again.retain(|_| self.opts.search.remedies.pass_aside);
         for id in again {
             // One at the limit of rounds would only be cut short again.
             let deep = self.nodes[id].depth + 1 >= self.opts.max_iterations;
