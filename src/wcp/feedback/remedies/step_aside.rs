@@ -325,4 +325,54 @@ mod tests {
         let d = closest_features(&hull, &post, None, &WalkTolerances::default()).distance;
         assert_eq!(d, 0.0);
     }
+
+    /// Passing places lie beside the robot's way, short of the contact, nearest it first:
+    /// X goes east and Y west along y = 0, head on, with a wall along the north side of the
+    /// way from x = 1 to 3. Each place is 2 to 3 of X's radii off the way, between where
+    /// X's leg starts and where it is at the contact, on the south side only over the wall's
+    /// stretch, and the first is the one nearest the contact.
+    #[test]
+    fn passing_places_lie_beside_the_way_short_of_the_contact() {
+        let text = r#"{"delta": 0.01, "robots": [
+            {"name": "X", "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "home": [-4, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1.5},
+            {"name": "Y", "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "home": [8, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1.5}],
+            "obstacles": [{"name": "wall", "shape": [[1, 0.9], [3, 0.9], [3, 1.3], [1, 1.3]]}],
+            "tasks": [{"name": "east", "at": [9, 0], "duration": 1, "robots": ["X"]},
+                      {"name": "west", "at": [-5, 0], "duration": 1, "robots": ["Y"]}]}"#;
+        let test = TestCell::new(text, vec![vec![0], vec![1]]);
+        let view = test.view();
+        let schedule = crate::wcp::schedule::Schedule::of(view.robots.to_vec());
+        let report = crate::collision::check(&schedule.scene(&test.cell), &Default::default());
+        let c = schedule.collision(&test.cell, &report).expect("head on");
+        let (x, y) = (c.robots.0, c.robots.1.expect("two robots"));
+        let side = Side {
+            x,
+            y,
+            sx: c.segments.0,
+            sy: c.segments.1.expect("two robots"),
+            t: c.time,
+        };
+        assert_eq!(test.cell.robots[x].name, "X");
+        let start = leg_window(&view.robots[x], 0).0;
+        let until = view.robots[y].end;
+        let places: Vec<Pose> =
+            passing_places(&test.ctx(), &view, &side, (side.t, until), start).collect();
+        let rx = test.cell.rigid(x).shape.radius();
+        let at_contact = view.robots[x].pose_at(side.t).pos.x;
+        assert!(!places.is_empty());
+        for p in &places {
+            let off = p.pos.y.abs() / rx;
+            assert!((2.0 - 1e-9..=3.0 + 1e-9).contains(&off), "{p:?}");
+            assert!((-4.0..=at_contact).contains(&p.pos.x), "{p:?}");
+            // The wall (1 to 3, 0.9 to 1.3) leaves no room north of the way there.
+            assert!(!(p.pos.y > 0.0 && (0.7..3.3).contains(&p.pos.x)), "{p:?}");
+        }
+        assert!(places
+            .iter()
+            .any(|p| p.pos.y < 0.0 && (1.0..3.0).contains(&p.pos.x)));
+        let nearest = places.iter().map(|p| p.pos.x).fold(f64::MIN, f64::max);
+        assert_eq!(places[0].pos.x, nearest);
+    }
 }
