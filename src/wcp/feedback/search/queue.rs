@@ -7,7 +7,7 @@ use std::cmp::Reverse;
 
 impl Search<'_> {
     /// The node's place in the queue.
-    pub(super) fn key(&self, id: usize) -> Key {
+    fn key(&self, id: usize) -> Key {
         let n = &self.nodes[id];
         (
             n.discrepancies,
