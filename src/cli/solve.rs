@@ -62,6 +62,11 @@ pub struct FeedbackArgs {
     /// default: search until a budget is spent).
     #[arg(long, default_value_t = 0)]
     search_patience: u64,
+    /// The share of the search's budget of schedules kept for its second pass along the way
+    /// to the best schedule (passing places, route-end exchanges), from 0 (the second pass
+    /// only once no node is left) to 1.
+    #[arg(long, default_value_t = 0.3, value_parser = share, allow_negative_numbers = true)]
+    second_pass_share: f64,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour (with it make-way: a robot in another's way leaves ahead of it, the other
     /// waits), step-aside, pass-aside (a robot on its way pulls in at a passing place beside
@@ -73,6 +78,13 @@ pub struct FeedbackArgs {
 }
 
 /// A positive, finite number of seconds; one beyond what a `Duration` holds is no limit.
+fn share(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected a share from 0 to 1, got `{s}`")),
+    }
+}
+
 fn positive_seconds(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
@@ -95,6 +107,7 @@ impl FeedbackArgs {
             (None, false) => SearchOptions::default().max_nodes,
         };
         opts.search.patience = (self.search_patience > 0).then_some(self.search_patience as usize);
+        opts.search.second_pass_share = self.second_pass_share;
         opts.search.time_limit = match (self.search_time, limited) {
             (Some(s), _) => Duration::try_from_secs_f64(s).unwrap_or(Duration::MAX),
             (None, true) => Duration::MAX,

@@ -407,6 +407,9 @@ fn the_search_may_switch_an_arms_configuration() {
             "--json",
             "--search-nodes",
             "200",
+            // All of them to the first pass, where reconfigurations are offered.
+            "--second-pass-share",
+            "0",
             "--remedies",
             remedies,
         ]);

@@ -87,6 +87,26 @@ fn huge_time_limits_are_taken() {
     }
 }
 
+/// The second pass's share of the search's budget is a share: from 0 to 1, nothing else.
+#[test]
+fn a_share_outside_zero_to_one_is_refused() {
+    for share in ["-0.5", "1.5", "nan", "a third"] {
+        let o = workcell(&["solve", "x.json", "--second-pass-share", share]);
+        assert_eq!(o.status.code(), Some(2), "{share}");
+        let err = text(&o.stderr);
+        assert!(
+            err.contains(&format!("expected a share from 0 to 1, got `{share}`")),
+            "{share}: {err}"
+        );
+        assert!(!err.contains("tip:"), "{share}: clap's tip: {err}");
+    }
+    let cell = shipped("feedback-cell.json");
+    for share in ["0", "1"] {
+        let o = workcell(&["solve", &cell, "--second-pass-share", share]);
+        assert_eq!(o.status.code(), Some(0), "{share}: {}", text(&o.stderr));
+    }
+}
+
 #[test]
 fn zero_counts_say_at_least_one() {
     let cases: [&[&str]; 3] = [

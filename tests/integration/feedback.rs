@@ -30,6 +30,14 @@ fn all_but(name: &str) -> SolveOptions {
     none_of(&[name])
 }
 
+/// Default options but the whole budget of schedules to the search's first pass (the
+/// second only once no node is left).
+fn first_pass_only() -> SolveOptions {
+    let mut opts = SolveOptions::default();
+    opts.search.second_pass_share = 0.0;
+    opts
+}
+
 /// Options with every remedy but those named.
 fn none_of(names: &[&str]) -> SolveOptions {
     let rest: Vec<&str> = (Remedies::NAMES.into_iter())
@@ -129,16 +137,19 @@ fn every_conflict_family_is_solved_without_divergence() {
             ConflictKind::Junction => 0.40,
             _ => f64::INFINITY,
         };
-        // And no longer than the search's answer when this test was written (ceilings, not
-        // pins: a better search passes; a worse ranking of children fails at the junction).
+        // And no longer than the search's answer when this test was last tuned (ceilings,
+        // not pins: a better search passes; a worse ranking of children fails at the
+        // junction). The aisles' 60.778 was 59.399 before the second pass had a share of the
+        // budget: the first pass found that schedule after 4,747 checks, when it now stops
+        // at 3,500; the junction's was 36.765, the doorway's 30.988.
         let ceiling = match kind {
             ConflictKind::CorridorNarrow => 42.812,
             ConflictKind::CorridorWide => 31.035,
-            ConflictKind::Junction => 36.765,
-            ConflictKind::Doorway => 30.988,
+            ConflictKind::Junction => 36.165,
+            ConflictKind::Doorway => 30.873,
             ConflictKind::HomeInWay => 21.286,
             ConflictKind::Workpiece => 22.435,
-            ConflictKind::Aisles => 59.399,
+            ConflictKind::Aisles => 60.778,
             ConflictKind::Ring => unreachable!("rings are left out"),
         };
         assert!(
@@ -260,8 +271,9 @@ fn robots_pass_side_by_side_in_a_wide_corridor() {
         .iter()
         .any(|r| matches!(r.kind, RemedyKind::Detour { .. })));
     assert!(solved.schedule.makespan <= solved.blind_makespan * 1.01);
-    // One at a time, as in a narrow corridor, costs far more.
-    let without = solve_with(&cell, &all_but("detour"));
+    // One at a time, as in a narrow corridor, costs far more (pulling in at a passing
+    // place beside the way lets them pass side by side too).
+    let without = solve_with(&cell, &none_of(&["detour", "pass-aside"]));
     assert!(without.schedule.makespan > solved.schedule.makespan * 1.02);
 }
 
@@ -416,7 +428,8 @@ fn a_repair_keeps_the_route_ends() {
 /// shortened form of a schedule found earlier, which was longer (42.75 or more) but
 /// shortens further (the answer was found when that schedule was, after 3,711 checks, not
 /// 4,144); the doorway of seven robots (cell 3) from 39.988 to 39.416, in several passes
-/// over the robots (39.85 in one).
+/// over the robots (39.85 in one). Each with the whole budget to the first pass, where
+/// those schedules were found.
 #[test]
 fn the_answer_holds_no_longer_than_the_other_robots_allow() {
     let shortened = |solved: &Solved| {
@@ -440,7 +453,7 @@ fn the_answer_holds_no_longer_than_the_other_robots_allow() {
         (ConflictKind::Doorway, 3, 39.42, 39.9),
     ] {
         let cell = conflict_cell(kind, k);
-        let solved = solve(&cell);
+        let solved = solve_with(&cell, &first_pass_only());
         assert_certified_within_limits(&cell, &solved);
         let got = solved.schedule.makespan;
         assert!(got < makespan, "{}-{k}: {got}", kind.name());
@@ -456,11 +469,12 @@ fn the_answer_holds_no_longer_than_the_other_robots_allow() {
 }
 
 /// `patience` ends the search once it stops paying, and only ends it sooner: the answer is
-/// the one a budget of that many schedules gives.
+/// the one a budget of that many schedules gives (the whole budget to the first pass, so
+/// that a smaller one does not move the second pass sooner).
 #[test]
 fn patience_ends_the_search_once_it_stops_paying() {
     let cell = conflict_cell(ConflictKind::Junction, 0);
-    let mut opts = SolveOptions::default();
+    let mut opts = first_pass_only();
     opts.search.patience = Some(300);
     let patient = solve_with(&cell, &opts);
     let checked = patient.nodes;
@@ -473,13 +487,13 @@ fn patience_ends_the_search_once_it_stops_paying() {
         checked > 300 && checked < opts.search.max_nodes,
         "{checked}"
     );
-    let mut budget = SolveOptions::default();
+    let mut budget = first_pass_only();
     budget.search.max_nodes = checked;
     let same = solve_with(&cell, &budget);
     assert_eq!(same.nodes, checked);
     assert_eq!(same.schedule.makespan, patient.schedule.makespan);
     // Without it, the whole budget is spent, and finds better.
-    let whole = solve_with(&cell, &SolveOptions::default());
+    let whole = solve_with(&cell, &first_pass_only());
     assert!(whole.nodes > checked && whole.schedule.makespan < patient.schedule.makespan);
 }
 
@@ -580,7 +594,8 @@ fn a_swap_in_a_closed_corridor_names_the_blockers_and_the_place() {
 
 /// A search that fails says which of its budgets ran out, and never a limit it did not
 /// reach: the rounds when lines of remedies reached them, the schedules when those ran
-/// out first (the junction needs more of both).
+/// out first (the junction needs more of both), the first pass's share of them when the
+/// second pass then found nothing more to try (with waits and pauses only, 14 of 20).
 #[test]
 fn a_failed_search_names_the_budget_it_exhausted() {
     let cell = conflict_cell(ConflictKind::Junction, 0);
@@ -590,9 +605,17 @@ fn a_failed_search_names_the_budget_it_exhausted() {
     };
     let mut nodes = SolveOptions::default();
     nodes.search.max_nodes = 10;
+    let mut share = only(&["wait", "pause"]);
+    share.search.max_nodes = 20;
     for (opts, exhausted) in [
         (rounds, "the limit of 3 rounds cut "),
         (nodes, "the search's budget of 10 schedules ran out;"),
+        (
+            share,
+            "the first pass spent its share of the search's budget (14 of 20 schedules), and \
+             the second pass tried every remedy along the way that got furthest (17 schedules \
+             checked in all);",
+        ),
     ] {
         let solved = solve_with(&cell, &opts);
         let failure = solved.failure.unwrap();

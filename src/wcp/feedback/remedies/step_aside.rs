@@ -21,7 +21,7 @@ const PARK_TRIES: usize = 3;
 /// Offsets of a passing place from the robot's way, in its radii: a robot of radius r
 /// beside another of radius r needs more than 2r between their centres.
 const PASS_OFFSETS: [f64; 5] = [2.0, 2.25, 2.5, 2.75, 3.0];
-/// Points of the way back from the contact where passing places are looked for, at most.
+/// Points of the way where passing places are looked for, at most, each side of the contact.
 const MAX_PASS_STEPS: usize = 200;
 
 /// Poses on rings about `q` where robot `x` is clear of the fixtures and of where robot `y`
@@ -47,10 +47,10 @@ fn parking_poses<'a>(
     free_poses(ctx, view, x, y, (t0, t1), on_rings)
 }
 
-/// Poses beside robot `x`'s way on its leg in play, a passing place: walked back from where
-/// it is at the contact to where the leg starts, every radius of the robot, at
-/// [`PASS_OFFSETS`] of its radius either side, those clear as a parking pose is (see
-/// [`free_poses`]), nearest the contact first.
+/// Poses beside robot `x`'s way on its leg in play, a passing place: walked from where it is
+/// at the contact back to where the leg starts and on to where its move ends, every radius
+/// of the robot, at [`PASS_OFFSETS`] of its radius either side, those clear as a parking
+/// pose is (see [`free_poses`]), nearest the contact first (behind it before ahead).
 fn passing_places<'a>(
     ctx: &Ctx<'a>,
     view: &View,
@@ -61,23 +61,37 @@ fn passing_places<'a>(
     let x = side.x;
     let rx = ctx.cell.rigid(x).shape.radius();
     let xs = &view.robots[x];
-    // The way back from the contact, a point about every radius of arc (at full speed).
+    // Along the way, a point about every radius of arc (at full speed), nearest the contact
+    // first, behind it (a bay passed) and ahead of it (the mouth of a side aisle the robot
+    // may reach before the other comes), from the leg's start to the end of the move.
     let dt = rx / ctx.cell.rigid(x).max_speed;
-    let steps = ((side.t - start) / dt)
-        .ceil()
-        .clamp(0.0, MAX_PASS_STEPS as f64) as usize;
-    let way: Vec<Pose> = (0..=steps)
-        .map(|k| xs.pose_at((side.t - k as f64 * dt).max(start)))
-        .collect();
-    let moving = |w: &&[Pose]| (w[0].pos - w[1].pos).norm() > 0.0;
-    let beside: Vec<Pose> = (way.windows(2).filter(moving))
-        .flat_map(|w| {
-            let along = (w[0].pos - w[1].pos).normalize();
+    let end = side.sx.end;
+    let points = |span: f64| (span / dt).ceil().clamp(0.0, MAX_PASS_STEPS as f64) as usize;
+    let (back, ahead) = (points(side.t - start), points(end - side.t));
+    let times = (1..=back.max(ahead)).flat_map(move |k| {
+        let along = k as f64 * dt;
+        [
+            (k <= back).then_some((side.t - along).max(start)),
+            (k <= ahead).then_some((side.t + along).min(end)),
+        ]
+        .into_iter()
+        .flatten()
+    });
+    let beside: Vec<Pose> = times
+        .filter_map(|u| {
+            // Across the point, so that a point at a bend has a direction too.
+            let p = xs.pose_at(u);
+            let q = xs.pose_at((u + dt).min(end));
+            let o = xs.pose_at((u - dt).max(start));
+            let d = q.pos - o.pos;
+            (d.norm() > 0.0).then_some((p, d.normalize()))
+        })
+        .flat_map(|(p, along)| {
             let normal = Vec2::new(-along.y, along.x);
             PASS_OFFSETS.iter().flat_map(move |k| {
                 [1.0, -1.0].map(|sign| Pose {
-                    pos: w[1].pos + sign * k * rx * normal,
-                    theta: w[1].theta,
+                    pos: p.pos + sign * k * rx * normal,
+                    theta: p.theta,
                 })
             })
         })
@@ -326,13 +340,14 @@ mod tests {
         assert_eq!(d, 0.0);
     }
 
-    /// Passing places lie beside the robot's way, short of the contact, nearest it first:
-    /// X goes east and Y west along y = 0, head on, with a wall along the north side of the
-    /// way from x = 1 to 3. Each place is 2 to 3 of X's radii off the way, between where
-    /// X's leg starts and where it is at the contact, on the south side only over the wall's
-    /// stretch, and the first is the one nearest the contact.
+    /// Passing places lie beside the robot's way, either side of the contact, nearest it
+    /// first: X goes east and Y west along y = 0, head on, with a wall along the north side
+    /// of the way from x = 1 to 3. Each place is 2 to 3 of X's radii off the way, between
+    /// where X's leg starts and where its move ends, on the south side only over the wall's
+    /// stretch; on each side of the contact they come nearest first, a step (a radius of
+    /// arc) apart, the two sides in turn.
     #[test]
-    fn passing_places_lie_beside_the_way_short_of_the_contact() {
+    fn passing_places_lie_beside_the_way_either_side_of_the_contact() {
         let text = r#"{"delta": 0.01, "robots": [
             {"name": "X", "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
              "home": [-4, 0], "max_speed": 1, "max_accel": 2, "max_turn_rate": 1.5},
@@ -365,14 +380,31 @@ mod tests {
         for p in &places {
             let off = p.pos.y.abs() / rx;
             assert!((2.0 - 1e-9..=3.0 + 1e-9).contains(&off), "{p:?}");
-            assert!((-4.0..=at_contact).contains(&p.pos.x), "{p:?}");
+            assert!((-4.0..=9.0).contains(&p.pos.x), "{p:?}");
             // The wall (1 to 3, 0.9 to 1.3) leaves no room north of the way there.
             assert!(!(p.pos.y > 0.0 && (0.7..3.3).contains(&p.pos.x)), "{p:?}");
         }
         assert!(places
             .iter()
             .any(|p| p.pos.y < 0.0 && (1.0..3.0).contains(&p.pos.x)));
-        let nearest = places.iter().map(|p| p.pos.x).fold(f64::MIN, f64::max);
-        assert_eq!(places[0].pos.x, nearest);
+        // Nearest first on each side, the first a step from the contact.
+        let gaps = |ahead: bool| -> Vec<f64> {
+            (places.iter())
+                .map(|p| p.pos.x - at_contact)
+                .filter(|d| (*d > 0.0) == ahead)
+                .map(f64::abs)
+                .collect()
+        };
+        for ahead in [false, true] {
+            let g = gaps(ahead);
+            assert!((rx * 0.5..=rx + 1e-9).contains(&g[0]), "{ahead}: {g:?}");
+            assert!(g.windows(2).all(|w| w[0] <= w[1] + 1e-12), "{ahead}: {g:?}");
+        }
+        // The two sides in turn: the first place ahead comes before the behind places two
+        // steps or more from the contact.
+        let first_ahead = places.iter().position(|p| p.pos.x > at_contact).unwrap();
+        assert!(places[..first_ahead]
+            .iter()
+            .all(|p| at_contact - p.pos.x < 1.5 * rx));
     }
 }

@@ -30,6 +30,14 @@ impl Search<'_> {
             .unwrap_or(0);
         let exhausted = match stop {
             Some(budget) => format!("{budget} ran out"),
+            None if self.first_pass_cut => format!(
+                "the first pass spent its share of the search's budget ({} of {} schedules), \
+                 and the second pass tried every remedy along the way that got furthest ({} \
+                 schedules checked in all)",
+                self.first_pass_budget(),
+                self.opts.search.max_nodes,
+                self.checked
+            ),
             None if self.capped > 0 => format!(
                 "the limit of {max_iterations} round{} cut {} line{} of remedies short, and \
                  every other remedy was tried",

@@ -25,10 +25,14 @@
 //! rounds as there are conflicts, never a growing pile of waits (every child clears the
 //! collision it answers); then it dives again from each other choice, the choices near the
 //! root first, where a poor choice costs most. Nodes that cannot beat the best certified
-//! makespan are dropped. When none is left, a second pass goes back along the way to the
-//! best: its re-sequencings are asked again with route-end exchanges, and its colliding
-//! schedules expanded again with passing places (`pending.rs`); when nothing is left after
-//! that either, the answer is the best the remedies can give.
+//! makespan are dropped. When none is left, or once the first pass has checked its share
+//! of the budget (all but [`SearchOptions::second_pass_share`] of it; the rest of its queue
+//! is dropped), a second pass goes back along the way to the best: its re-sequencings are
+//! asked again with route-end exchanges, and its colliding schedules expanded again with
+//! passing places (`pending.rs`); when nothing is left after that either, the answer is the
+//! best the remedies can give.
+//!
+//! [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
 //! When the search ends, every schedule that was the best when found has its slack (waits,
 //! holds, slowed motions) shortened as far as the other robots allow (`tighten.rs`), and the
 //! answer is the shortest of them. Ties go to the node made first, so that the result is
@@ -210,6 +214,8 @@ struct Search<'a> {
     /// Whether the search is in its second pass ([`Search::widen`]): re-sequencings
     /// exchange route ends, and a robot on its way may pull in at a passing place.
     second_pass: bool,
+    /// Whether the first pass ended with nodes still queued, its share of the budget spent.
+    first_pass_cut: bool,
 }
 
 /// Solves the cell by searching over remedies (see the module documentation).
@@ -269,6 +275,7 @@ impl<'a> Search<'a> {
             capped: 0,
             repairs: Vec::new(),
             second_pass: false,
+            first_pass_cut: false,
         }
     }
 }
@@ -284,6 +291,13 @@ impl Search<'_> {
             let stop = self.budget_spent(started);
             if stop.is_some() || self.stalled() {
                 return Ok(stop);
+            }
+            if self.first_pass_spent() {
+                // The rest of the budget is the second pass's: what the first left queued
+                // waits no longer.
+                self.queue.clear();
+                self.first_pass_cut = true;
+                return Ok(None);
             }
             if !self.worth(id) {
                 continue;
@@ -350,6 +364,21 @@ impl Search<'_> {
         self.prepared
             .deadline
             .map(|d| d.checked_sub(reserve).unwrap_or(d))
+    }
+
+    /// Whether the first pass has checked its share of the budget of schedules (all but
+    /// [`SearchOptions::second_pass_share`] of it).
+    ///
+    /// [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
+    fn first_pass_spent(&self) -> bool {
+        let share = self.opts.search.second_pass_share;
+        !self.second_pass && share > 0.0 && self.checked >= self.first_pass_budget()
+    }
+
+    /// The schedules the first pass may check when a share is kept for the second.
+    fn first_pass_budget(&self) -> usize {
+        let search = &self.opts.search;
+        ((1.0 - search.second_pass_share) * search.max_nodes as f64).ceil() as usize
     }
 
     /// Whether the search has stopped paying (see [`SearchOptions::patience`]): a node

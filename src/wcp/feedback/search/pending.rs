@@ -189,8 +189,9 @@ impl Search<'_> {
         }
     }
 
-    /// The search's second pass, once its queue is empty. On the way to the best certified
-    /// schedule (without one, to the schedule whose collision came latest), every
+    /// The search's second pass, once its queue is empty or the first pass has spent its
+    /// share of the budget ([`SearchOptions::second_pass_share`]). On the way to the best
+    /// certified schedule (without one, to the schedule whose collision came latest), every
     /// re-sequencing is asked again, this time exchanging route ends (2-opt*,
     /// [`SequencerOptions::route_exchanges`]), and every colliding schedule is expanded
     /// again, this time with passing places (a robot on its way pulls in beside it and lets
@@ -205,6 +206,7 @@ impl Search<'_> {
     /// short as every schedule on its way).
     ///
     /// [`SequencerOptions::route_exchanges`]: crate::wcp::sequencer::SequencerOptions::route_exchanges
+    /// [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
     pub(super) fn widen(&mut self) -> bool {
         if self.second_pass {
             return false;
