@@ -77,7 +77,7 @@ pub struct FeedbackArgs {
     remedies: Option<Vec<String>>,
 }
 
-/// A positive, finite number of seconds; one beyond what a `Duration` holds is no limit.
+/// A share, from 0 to 1.
 fn share(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
@@ -85,6 +85,7 @@ fn share(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A positive, finite number of seconds; one beyond what a `Duration` holds is no limit.
 fn positive_seconds(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),

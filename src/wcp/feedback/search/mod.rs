@@ -31,8 +31,6 @@
 //! asked again with route-end exchanges, and its colliding schedules expanded again with
 //! passing places (`pending.rs`); when nothing is left after that either, the answer is the
 //! best the remedies can give.
-//!
-//! [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
 //! When the search ends, every schedule that was the best when found has its slack (waits,
 //! holds, slowed motions) shortened as far as the other robots allow (`tighten.rs`), and the
 //! answer is the shortest of them. Ties go to the node made first, so that the result is
@@ -42,6 +40,8 @@
 //! The budgets are a number of schedules checked and a time limit (a safety stop: a run
 //! that reaches it may differ from run to run). Without any certified schedule, the search
 //! reports the schedule whose first collision came latest, and that collision.
+//!
+//! [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
 
 mod answer;
 mod order;
@@ -371,11 +371,11 @@ impl Search<'_> {
     ///
     /// [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
     fn first_pass_spent(&self) -> bool {
-        let share = self.opts.search.second_pass_share;
-        !self.second_pass && share > 0.0 && self.checked >= self.first_pass_budget()
+        !self.second_pass && self.checked >= self.first_pass_budget()
     }
 
-    /// The schedules the first pass may check when a share is kept for the second.
+    /// The schedules the first pass may check, a share of them kept for the second (all of
+    /// them with no share: the budget stops the search first).
     fn first_pass_budget(&self) -> usize {
         let search = &self.opts.search;
         ((1.0 - search.second_pass_share) * search.max_nodes as f64).ceil() as usize
