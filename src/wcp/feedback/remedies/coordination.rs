@@ -70,10 +70,13 @@ impl Step {
 
 /// The best timing of the pair through the diagram of `axes` with grid step `dt`, where
 /// `free(i, j)` tells whether the first robot at point `i` and the second at point `j` are
-/// apart by the margin; `None` when every monotone path is blocked.
+/// apart by the margin; `None` when every monotone path is blocked, or costs `bound` or
+/// more (the later finish with what follows): a point from which neither robot can end
+/// sooner is not walked on, nor its freedom asked.
 pub(super) fn coordinate(
     axes: &[Axis; 2],
     dt: f64,
+    bound: f64,
     free: impl Fn(usize, usize) -> bool,
 ) -> Option<Coordinated> {
     let (n, m) = (axes[0].points, axes[1].points);
@@ -83,7 +86,13 @@ pub(super) fn coordinate(
     let mut known: Vec<Option<bool>> = vec![None; n * m];
     let mut is_free = |i: usize, j: usize| *known[at(i, j)].get_or_insert_with(|| free(i, j));
     let start = axes[0].start.min(axes[1].start);
-    if !is_free(0, 0) {
+    // The least cost of a way through (i, j) reached at t: each robot's steps left, then
+    // what follows its leg.
+    let late = |t: f64, i: usize, j: usize| {
+        let left = |k: usize, p: usize| t + (axes[k].points - 1 - p) as f64 * dt + axes[k].after;
+        left(0, i).max(left(1, j)) >= bound
+    };
+    if late(start, 0, 0) || !is_free(0, 0) {
         return None;
     }
     // Earliest arrival at each point, the progress made on the way, and the last step.
@@ -142,7 +151,7 @@ pub(super) fn coordinate(
                 }
             }
             if let Some((t, made, step)) = best {
-                if is_free(i, j) {
+                if !late(t, i, j) && is_free(i, j) {
                     arrival[at(i, j)] = t;
                     progress[at(i, j)] = made;
                     came[at(i, j)] = Some(step);
@@ -185,6 +194,10 @@ pub(super) fn coordinate(
     let &End {
         at: end, finish, ..
     } = (ends.iter()).min_by(|a, b| a.cost.cmp(&b.cost).then(a.sum.total_cmp(&b.sum)))?;
+    let cost = (finish[0] + axes[0].after).max(finish[1] + axes[1].after);
+    if cost >= bound {
+        return None;
+    }
     // Back from the end to the start, then forward to time the holds.
     let mut steps = Vec::new();
     let (mut i, mut j) = end;
@@ -248,7 +261,13 @@ mod tests {
     /// Nothing in the way: both go as planned, no hold.
     #[test]
     fn a_free_diagram_is_crossed_on_the_diagonal() {
-        let c = coordinate(&[axis(0.0, 11), axis(2.0, 6)], 1.0, |_, _| true).unwrap();
+        let c = coordinate(
+            &[axis(0.0, 11), axis(2.0, 6)],
+            1.0,
+            f64::INFINITY,
+            |_, _| true,
+        )
+        .unwrap();
         assert_eq!(c.holds, [vec![], vec![]]);
         assert_eq!(c.finish, [10.0, 7.0]);
     }
@@ -261,7 +280,7 @@ mod tests {
         let blocked = |i: usize, j: usize| (4..=6).contains(&i) && (4..=6).contains(&j);
         let mut axes = [axis(0.0, 11), axis(0.0, 11)];
         axes[0].after = 5.0; // the first has more to do afterwards: the second yields
-        let c = coordinate(&axes, 1.0, |i, j| !blocked(i, j)).unwrap();
+        let c = coordinate(&axes, 1.0, f64::INFINITY, |i, j| !blocked(i, j)).unwrap();
         // The second goes on to point 3 (the last free before the first reaches 4) and
         // leaves it as the first leaves 6 (the steps' end points decide; the margin of
         // `free` covers what lies between).
@@ -271,11 +290,33 @@ mod tests {
         // The other way round when the second has more to do.
         axes[0].after = 0.0;
         axes[1].after = 5.0;
-        let c = coordinate(&axes, 1.0, |i, j| !blocked(i, j)).unwrap();
+        let c = coordinate(&axes, 1.0, f64::INFINITY, |i, j| !blocked(i, j)).unwrap();
         assert_eq!(
             (c.holds[0].clone(), c.holds[1].clone()),
             (vec![(3, 3.0)], vec![])
         );
+    }
+
+    /// A bound drops only the timings that cost it or more, and spares the freedom of the
+    /// points past which neither robot can end sooner.
+    #[test]
+    fn a_bound_drops_only_the_timings_that_reach_it() {
+        let blocked = |i: usize, j: usize| (4..=6).contains(&i) && (4..=6).contains(&j);
+        let mut axes = [axis(0.0, 11), axis(0.0, 11)];
+        axes[0].after = 5.0;
+        let asked = std::cell::Cell::new(0);
+        let free = |i: usize, j: usize| {
+            asked.set(asked.get() + 1);
+            !blocked(i, j)
+        };
+        let open = coordinate(&axes, 1.0, f64::INFINITY, free).unwrap();
+        let all = asked.replace(0);
+        // It costs 15: the first ends at 10 with 5 to do, the second at 13.
+        let near = coordinate(&axes, 1.0, 15.0 + 1e-9, free).unwrap();
+        assert_eq!(near, open);
+        assert!(asked.replace(0) < all);
+        assert!(coordinate(&axes, 1.0, 15.0, free).is_none());
+        assert!(asked.get() < all);
     }
 
     /// A robot that starts later is no hold of its own; the other holds only where it must.
@@ -284,12 +325,12 @@ mod tests {
         let axes = [axis(0.0, 6), axis(5.0, 6)];
         // The first's point 3 meets the second's way from its point 3 on: the first passes
         // it while the second has not started.
-        let c = coordinate(&axes, 1.0, |i, j| !(i == 3 && j >= 3)).unwrap();
+        let c = coordinate(&axes, 1.0, f64::INFINITY, |i, j| !(i == 3 && j >= 3)).unwrap();
         assert_eq!(c.holds, [vec![], vec![]]);
         assert_eq!(c.finish, [5.0, 10.0]);
         // It meets the second's way up to point 2: the first holds at 2 until the second,
         // starting at 5, has passed (point 3 at 8).
-        let c = coordinate(&axes, 1.0, |i, j| !(i == 3 && j <= 2)).unwrap();
+        let c = coordinate(&axes, 1.0, f64::INFINITY, |i, j| !(i == 3 && j <= 2)).unwrap();
         assert_eq!(c.holds, [vec![(2, 5.0)], vec![]]);
         assert_eq!(c.finish, [10.0, 10.0]);
     }
@@ -301,7 +342,7 @@ mod tests {
         let mut axes = [axis(0.0, 11), axis(0.0, 11)];
         axes[0].after = 5.0;
         axes[1].rest = (0..11).map(|j| j % 2 == 0 && j != 2).collect(); // 0, 4, 6, 8, 10
-        let c = coordinate(&axes, 1.0, |i, j| !blocked(i, j)).unwrap();
+        let c = coordinate(&axes, 1.0, f64::INFINITY, |i, j| !blocked(i, j)).unwrap();
         // Not at 3 (moving there) nor 2: from its start, as late as it can still go on
         // without stopping short of the crossing.
         assert_eq!(c.holds, [vec![], vec![(0, 3.0)]]);
@@ -310,7 +351,7 @@ mod tests {
         // rest short of the crossing (3), not at its start.
         (axes[0].after, axes[1].after) = (0.0, 5.0);
         axes[0].rest = (0..11).map(|i| i == 0 || i == 3 || i == 10).collect();
-        let c = coordinate(&axes, 1.0, |i, j| !blocked(i, j)).unwrap();
+        let c = coordinate(&axes, 1.0, f64::INFINITY, |i, j| !blocked(i, j)).unwrap();
         assert_eq!(c.holds, [vec![(3, 3.0)], vec![]]);
     }
 
@@ -319,9 +360,13 @@ mod tests {
     fn a_blocked_end_has_no_timing() {
         // The first's end pose meets the second's whole way: the second can never finish
         // after it, and cannot finish before it either (its end meets the first's way).
-        let c = coordinate(&[axis(0.0, 5), axis(0.0, 5)], 1.0, |i, j| i != 4 && j != 4);
+        let c = coordinate(&[axis(0.0, 5), axis(0.0, 5)], 1.0, f64::INFINITY, |i, j| {
+            i != 4 && j != 4
+        });
         assert!(c.is_none());
-        let c = coordinate(&[axis(0.0, 5), axis(0.0, 5)], 1.0, |i, j| (i, j) != (0, 0));
+        let c = coordinate(&[axis(0.0, 5), axis(0.0, 5)], 1.0, f64::INFINITY, |i, j| {
+            (i, j) != (0, 0)
+        });
         assert!(c.is_none());
     }
 }

@@ -184,7 +184,8 @@ mod tests {
     }
 
     /// A cap drops only children the search would drop: capped, the candidates that end
-    /// before the cap are the uncapped ones that do, each the same, and fewer are made.
+    /// before the cap are the uncapped ones that do, each the same, and fewer are made;
+    /// the two robots tuned together (a pair met again) included.
     #[test]
     fn a_cap_drops_only_the_children_that_end_at_or_after_it() {
         let test = TestCell::new(CROSSING, vec![vec![0], vec![1]]);
@@ -192,13 +193,31 @@ mod tests {
         let schedule = Schedule::of(view.robots.to_vec());
         let report = check(&schedule.scene(&test.cell), &Default::default());
         let c = schedule.collision(&test.cell, &report).expect("they cross");
-        let all = ends(&candidates(&test.ctx(), &view, &c, false));
+        for again in [false, true] {
+            capped_as_uncapped(&test, &c, again);
+        }
+    }
+
+    fn capped_as_uncapped(test: &TestCell, c: &Collision, again: bool) {
+        let view = test.view();
+        let all = ends(&candidates(&test.ctx(), &view, c, again));
         assert!(all.len() >= 6, "{all:?}");
+        let tuned = |v: &[(Remedy, f64)]| {
+            (v.iter())
+                .filter(|a| matches!(a.0.kind, RemedyKind::Tune { .. }))
+                .count()
+        };
+        assert_eq!(tuned(&all), again as usize, "{all:?}");
         let mut cuts: Vec<f64> = all.iter().map(|a| a.1).collect();
         cuts.sort_by(f64::total_cmp);
-        // At a child's own end (dropped: not sooner), and between two ends.
-        for cap in [cuts[cuts.len() / 2], 0.5 * (cuts[1] + cuts[2])] {
-            let capped = ends(&candidates(&test.ctx().capped(cap), &view, &c, false));
+        // At a child's own end (dropped: not sooner), and between two ends; at and just
+        // past the tuned child's (its diagram's grid ends a step later than its legs).
+        let mut caps = vec![cuts[cuts.len() / 2], 0.5 * (cuts[1] + cuts[2])];
+        if let Some(t) = all.iter().find(|a| matches!(a.0.kind, RemedyKind::Tune { .. })) {
+            caps.extend([t.1, t.1 + 1e-6]);
+        }
+        for cap in caps {
+            let capped = ends(&candidates(&test.ctx().capped(cap), &view, c, again));
             let before = |v: &[(Remedy, f64)]| -> Vec<_> {
                 v.iter().filter(|a| a.1 < cap).cloned().collect()
             };

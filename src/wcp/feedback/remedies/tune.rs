@@ -111,7 +111,13 @@ pub(super) fn tune(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             .collect()
     });
     let bodies = [x, y].map(|r| ctx.cell.rigid(r).pieces());
-    TUNE_MARGINS.iter().find_map(|k| {
+    // The grid rounds each leg's motion up by less than a step, and a hold lengthens the
+    // robot's day by its duration: a timing that costs a step beyond the cap ends a held
+    // robot at or after it (the search would drop the child). A robot not held ends as
+    // now, below the cap in the search.
+    let ends = movers.map(|v| view.robots[v.r].end);
+    let bound = ctx.cap.max(ends[0]).max(ends[1]) + dt;
+    for k in TUNE_MARGINS {
         // Between two grid points the distance falls by at most half of both bodies' moves
         // (Schwarzer, Saha & Latombe's bound on the two ends of a step): a point is free
         // when the bodies are that far apart, and δ more, both ends.
@@ -120,9 +126,13 @@ pub(super) fn tune(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             let (a, b) = (poses[0][i], poses[1][j]);
             apart((bodies[0], a), (bodies[1], b), reach[0] + reach[1], margin)
         };
-        let plan = coordinate(&axes, dt, free)?;
-        realise(ctx, view, side, &movers, &plan.holds, dt)
-    })
+        // A wider margin frees no point: once no timing is found, none will be.
+        let plan = coordinate(&axes, dt, bound, free)?;
+        if let Some(child) = realise(ctx, view, side, &movers, &plan.holds, dt) {
+            return Some(child);
+        }
+    }
+    None
 }
 
 /// For each of `n` grid points from `t0` in steps of `dt`, whether the robot scheduled `s`
