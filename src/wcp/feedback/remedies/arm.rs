@@ -164,7 +164,7 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
             return None;
         }
         let motion = Arc::new(model.planned(&path.motion));
-        let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?;
+        let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?.ok()?;
         Some((s.end, (motion, new, s)))
     });
     // On ties the first window tried.

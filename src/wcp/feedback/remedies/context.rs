@@ -383,6 +383,10 @@ pub(super) fn same_path(pieces: &[Piece], motion: &PlannedMove) -> bool {
     matches!(pieces, [Piece::Go { motion: old, .. }] if old.path == motion.path)
 }
 
+/// A detour that ends its robot at or after [`Ctx::cap`]: the search would drop it, so it
+/// is not checked.
+pub(super) struct Late;
+
 /// Leg `m` of `side.x` as the one motion `motion` (a detour's leg), and the schedule it
 /// makes, when that clears `side.y` from `t0` (the leg's start) to the window's end.
 pub(super) fn detoured(
@@ -391,9 +395,12 @@ pub(super) fn detoured(
     side: &Side,
     (m, t0): (usize, f64),
     motion: &Arc<PlannedMove>,
-) -> Option<(Leg, RobotSchedule)> {
+) -> Option<Result<(Leg, RobotSchedule), Late>> {
     let new = by_motion(leg(view.legs, side.x, m), motion);
     let s = ctx.rebuild(view, side.x, m, &new)?;
+    if s.end >= ctx.cap {
+        return Some(Err(Late));
+    }
     let window = (t0, side.window_end(&s, m));
     let ys = &view.robots[side.y];
     let ok = clears(
@@ -403,7 +410,7 @@ pub(super) fn detoured(
         window,
         &ctx.opts.check,
     );
-    ok.then_some((new, s))
+    ok.then_some(Ok((new, s)))
 }
 
 /// Of the candidates tried, `(end of the changed leg, candidate)`, the one that ends

@@ -43,13 +43,18 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         node_pose(ctx.cell, side.x, to),
     );
     let current = pieces_of(ctx, view, side.x, m)?;
+    // Whether a way round was found that ends too late for the search (not checked).
+    let late = std::cell::Cell::new(false);
     let around = |(w0, w1): (f64, f64)| {
         let region = occupancy(ctx, view, side.y, w0, w1.max(w0));
         let motion = ctx.moves.between(side.x, a, b, &region)?;
         if same_path(&current, &motion) {
             return None;
         }
-        let (new, s) = detoured(ctx, view, side, (m, t0), &motion)?;
+        let Ok((new, s)) = detoured(ctx, view, side, (m, t0), &motion)? else {
+            late.set(true);
+            return None;
+        };
         Some((s.end, (motion, new, s)))
     };
     // When neither window works because the other robot's sweep covers the detouring
@@ -69,6 +74,8 @@ pub(super) fn detour(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     // On ties the first window tried.
     let (found, last_resort) = match earliest(windows.into_iter().filter_map(around)) {
         Some(found) => (found, false),
+        // The other side is for robots with no way round at all.
+        None if late.get() => return None,
         None => {
             let other_side = hemmed().then(|| around(before).or_else(|| around(contact)));
             (other_side.flatten()?.1, true)

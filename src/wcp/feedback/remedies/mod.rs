@@ -213,7 +213,10 @@ mod tests {
         // At a child's own end (dropped: not sooner), and between two ends; at and just
         // past the tuned child's (its diagram's grid ends a step later than its legs).
         let mut caps = vec![cuts[cuts.len() / 2], 0.5 * (cuts[1] + cuts[2])];
-        if let Some(t) = all.iter().find(|a| matches!(a.0.kind, RemedyKind::Tune { .. })) {
+        if let Some(t) = all
+            .iter()
+            .find(|a| matches!(a.0.kind, RemedyKind::Tune { .. }))
+        {
             caps.extend([t.1, t.1 + 1e-6]);
         }
         for cap in caps {
@@ -224,8 +227,12 @@ mod tests {
             let kept = before(&all);
             assert!(!kept.is_empty() && capped.len() < all.len(), "cap {cap}");
             assert_eq!(before(&capped), kept, "cap {cap}");
-            // What ends later is what the cap does not refine (a detour), made as before.
+            // What ends later is made as before, by a remedy that stopped refining it; no
+            // detour that ends later is made (its check is spared).
             assert!(capped.iter().all(|a| all.contains(a)), "cap {cap}");
+            let detour = |a: &&(Remedy, f64)| matches!(a.0.kind, RemedyKind::Detour { .. });
+            assert!(capped.iter().filter(detour).all(|a| a.1 < cap), "cap {cap}");
+            assert!(all.iter().filter(detour).any(|a| a.1 >= cap), "cap {cap}");
         }
     }
 }
