@@ -57,10 +57,11 @@ pub struct FeedbackArgs {
     /// it is not reached) [default: 60; with --time-limit, that limit's].
     #[arg(long, value_parser = positive_seconds, allow_negative_numbers = true)]
     search_time: Option<f64>,
-    /// Stop when the search stops paying: once it has checked this many schedules, and at
-    /// least as many as it took to find it, since its best certified schedule (0, the
-    /// default: search until a budget is spent).
-    #[arg(long, default_value_t = 0)]
+    /// End the search's first pass when it stops paying: once it has checked this many
+    /// schedules, and at least as many as it took to find it, since its best certified
+    /// schedule; the second pass then has its share of the budget, and the search ends (0:
+    /// the first pass runs until its share is spent or no node is left).
+    #[arg(long, default_value_t = 2000)]
     search_patience: u64,
     /// The share of the search's budget of schedules kept for its second pass along the way
     /// to the best schedule (passing places, route-end exchanges), from 0 (the second pass

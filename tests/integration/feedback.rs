@@ -31,10 +31,11 @@ fn all_but(name: &str) -> SolveOptions {
 }
 
 /// Default options but the whole budget of schedules to the search's first pass (the
-/// second only once no node is left).
+/// second only once no node is left), however long since it last found better.
 fn first_pass_only() -> SolveOptions {
     let mut opts = SolveOptions::default();
     opts.search.second_pass_share = 0.0;
+    opts.search.patience = None;
     opts
 }
 
@@ -495,6 +496,30 @@ fn patience_ends_the_search_once_it_stops_paying() {
     // Without it, the whole budget is spent, and finds better.
     let whole = solve_with(&cell, &first_pass_only());
     assert!(whole.nodes > checked && whole.schedule.makespan < patient.schedule.makespan);
+}
+
+/// By default the first pass ends once it has gone 2,000 schedules (and as many as its
+/// answer took) without finding better, and the second pass then has its 30 % share: the
+/// ring of seven robots of `generate --kind conflict --seed 1`, certified after 45 checks,
+/// is answered after 3,656 instead of the whole budget's 5,000, with the same makespan.
+#[test]
+fn the_first_pass_ends_once_it_stops_paying() {
+    let cell = conflict_cell(ConflictKind::Ring, 9);
+    let opts = SolveOptions::default();
+    let patient = solve_with(&cell, &opts);
+    assert!(patient.collision_free, "{:?}", patient.failure);
+    let found = patient.found_after.expect("an answer");
+    let patience = opts.search.patience.expect("on by default");
+    assert_eq!(patience, 2000);
+    // The first pass's patience, the second's share, and a batch of children past each.
+    let share = (opts.search.second_pass_share * opts.search.max_nodes as f64) as usize;
+    let ceiling = found + patience.max(found) + share + 200;
+    assert!(patient.nodes <= ceiling, "{} > {ceiling}", patient.nodes);
+    let mut whole = opts;
+    whole.search.patience = None;
+    let spent = solve_with(&cell, &whole);
+    assert_eq!(spent.nodes, whole.search.max_nodes);
+    assert_eq!(spent.schedule.makespan, patient.schedule.makespan);
 }
 
 /// Remembering answers (a re-sequencing asked again, the remedies of a collision met again)

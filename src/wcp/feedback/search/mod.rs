@@ -214,8 +214,12 @@ struct Search<'a> {
     /// Whether the search is in its second pass ([`Search::widen`]): re-sequencings
     /// exchange route ends, and a robot on its way may pull in at a passing place.
     second_pass: bool,
-    /// Whether the first pass ended with nodes still queued, its share of the budget spent.
+    /// Whether the first pass ended with nodes still queued, its share of the budget spent
+    /// or its patience lost.
     first_pass_cut: bool,
+    /// The schedules checked by which the second pass ends, once the first was cut: its
+    /// share of the budget after the first pass's end.
+    second_pass_end: Option<usize>,
 }
 
 /// Solves the cell by searching over remedies (see the module documentation).
@@ -276,6 +280,7 @@ impl<'a> Search<'a> {
             repairs: Vec::new(),
             second_pass: false,
             first_pass_cut: false,
+            second_pass_end: None,
         }
     }
 }
@@ -289,12 +294,14 @@ impl Search<'_> {
     ) -> Result<Option<String>, InputError> {
         while let Some(Reverse((.., id))) = self.queue.pop() {
             let stop = self.budget_spent(started);
-            if stop.is_some() || self.stalled() {
+            let second_pass_spent = self.second_pass_end.is_some_and(|end| self.checked >= end);
+            if stop.is_some() || second_pass_spent {
                 return Ok(stop);
             }
-            if self.first_pass_spent() {
-                // The rest of the budget is the second pass's: what the first left queued
-                // waits no longer.
+            if self.first_pass_spent() || self.stalled() {
+                // The second pass's share of the budget from here: what the first pass
+                // left queued waits no longer.
+                self.second_pass_end = Some(self.checked + self.second_pass_budget());
                 self.queue.clear();
                 self.first_pass_cut = true;
                 return Ok(None);
@@ -381,7 +388,12 @@ impl Search<'_> {
         ((1.0 - search.second_pass_share) * search.max_nodes as f64).ceil() as usize
     }
 
-    /// Whether the search has stopped paying (see [`SearchOptions::patience`]): a node
+    /// The schedules the second pass may check after a first pass that was cut.
+    fn second_pass_budget(&self) -> usize {
+        self.opts.search.max_nodes - self.first_pass_budget()
+    }
+
+    /// Whether the first pass has stopped paying (see [`SearchOptions::patience`]): a node
     /// found late earns as long a search again.
     ///
     /// [`SearchOptions::patience`]: crate::wcp::SearchOptions::patience
@@ -389,7 +401,9 @@ impl Search<'_> {
         let Some(patience) = self.opts.search.patience else {
             return false;
         };
-        self.best.is_some() && self.checked - self.best_at >= patience.max(self.best_at)
+        !self.second_pass
+            && self.best.is_some()
+            && self.checked - self.best_at >= patience.max(self.best_at)
     }
 
     /// The preparation node `id` works with.
