@@ -26,11 +26,12 @@
 //! collision it answers); then it dives again from each other choice, the choices near the
 //! root first, where a poor choice costs most. Nodes that cannot beat the best certified
 //! makespan are dropped. When none is left, or once the first pass has checked its share
-//! of the budget (all but [`SearchOptions::second_pass_share`] of it; the rest of its queue
-//! is dropped), a second pass goes back along the way to the best: its re-sequencings are
-//! asked again with route-end exchanges, and its colliding schedules expanded again with
-//! passing places (`pending.rs`); when nothing is left after that either, the answer is the
-//! best the remedies can give.
+//! of the budget (all but [`SearchOptions::second_pass_share`] of it) or stopped paying
+//! ([`SearchOptions::patience`]; either way the rest of its queue is dropped), a second
+//! pass goes back along the way to the best: its re-sequencings are asked again with
+//! route-end exchanges, and its colliding schedules expanded again with passing places
+//! (`pending.rs`); it ends when its share of the budget is spent, or when nothing is left,
+//! and then the answer is the best the remedies can give.
 //! When the search ends, every schedule that was the best when found has its slack (waits,
 //! holds, slowed motions) shortened as far as the other robots allow (`tighten.rs`), and the
 //! answer is the shortest of them. Ties go to the node made first, so that the result is
@@ -42,8 +43,10 @@
 //! reports the schedule whose first collision came latest, and that collision.
 //!
 //! [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
+//! [`SearchOptions::patience`]: crate::wcp::SearchOptions::patience
 
 mod answer;
+mod budget;
 mod order;
 mod pending;
 mod queue;
@@ -153,10 +156,6 @@ enum Status {
     /// a dead end, reported as the greedy loop reports it when nothing better is found.
     Undecided,
 }
-
-/// The share of the solve's time limit left, after the search, for shortening the answers'
-/// slack: about 0.1 s at most on the conflict cells, a few milliseconds on most.
-const TIGHTEN_SHARE: f64 = 0.05;
 
 /// Two makespans closer than this (relative) are the same: a node must beat the bound by
 /// more to be worth checking.
@@ -335,75 +334,6 @@ impl Search<'_> {
             }
         }
         Ok(None)
-    }
-
-    /// The budget that has run out, if one has: schedules checked, the solve's time limit
-    /// or the search's own (counted from `started`).
-    fn budget_spent(&self, started: Instant) -> Option<String> {
-        let max_nodes = self.opts.search.max_nodes;
-        if self.checked >= max_nodes {
-            return Some(format!(
-                "the search's budget of {} schedule{}",
-                max_nodes,
-                if max_nodes == 1 { "" } else { "s" }
-            ));
-        }
-        if self.deadline().is_some_and(|d| Instant::now() >= d) {
-            return Some("the solve's time limit".to_owned());
-        }
-        if started.elapsed() >= self.opts.search.time_limit {
-            return Some(format!(
-                "the search's time limit of {:.0} s",
-                self.opts.search.time_limit.as_secs_f64()
-            ));
-        }
-        None
-    }
-
-    /// When the search stops under the solve's time limit: a share of the limit before it,
-    /// left for shortening the answers' slack (`tighten.rs`).
-    fn deadline(&self) -> Option<Instant> {
-        let reserve = self
-            .opts
-            .time_limit
-            .unwrap_or_default()
-            .mul_f64(TIGHTEN_SHARE);
-        self.prepared
-            .deadline
-            .map(|d| d.checked_sub(reserve).unwrap_or(d))
-    }
-
-    /// Whether the first pass has checked its share of the budget of schedules (all but
-    /// [`SearchOptions::second_pass_share`] of it).
-    ///
-    /// [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
-    fn first_pass_spent(&self) -> bool {
-        !self.second_pass && self.checked >= self.first_pass_budget()
-    }
-
-    /// The schedules the first pass may check, a share of them kept for the second (all of
-    /// them with no share: the budget stops the search first).
-    fn first_pass_budget(&self) -> usize {
-        let search = &self.opts.search;
-        ((1.0 - search.second_pass_share) * search.max_nodes as f64).ceil() as usize
-    }
-
-    /// The schedules the second pass may check after a first pass that was cut.
-    fn second_pass_budget(&self) -> usize {
-        self.opts.search.max_nodes - self.first_pass_budget()
-    }
-
-    /// Whether the first pass has stopped paying (see [`SearchOptions::patience`]): a node
-    /// found late earns as long a search again.
-    ///
-    /// [`SearchOptions::patience`]: crate::wcp::SearchOptions::patience
-    fn stalled(&self) -> bool {
-        let Some(patience) = self.opts.search.patience else {
-            return false;
-        };
-        !self.second_pass
-            && self.best.is_some()
-            && self.checked - self.best_at >= patience.max(self.best_at)
     }
 
     /// The preparation node `id` works with.
