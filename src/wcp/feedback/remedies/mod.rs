@@ -202,21 +202,14 @@ mod tests {
         let view = test.view();
         let all = ends(&candidates(&test.ctx(), &view, c, again));
         assert!(all.len() >= 6, "{all:?}");
-        let tuned = |v: &[(Remedy, f64)]| {
-            (v.iter())
-                .filter(|a| matches!(a.0.kind, RemedyKind::Tune { .. }))
-                .count()
-        };
-        assert_eq!(tuned(&all), again as usize, "{all:?}");
+        let tuned = |a: &&(Remedy, f64)| matches!(a.0.kind, RemedyKind::Tune { .. });
+        assert_eq!(all.iter().filter(tuned).count(), again as usize, "{all:?}");
         let mut cuts: Vec<f64> = all.iter().map(|a| a.1).collect();
         cuts.sort_by(f64::total_cmp);
         // At a child's own end (dropped: not sooner), and between two ends; at and just
         // past the tuned child's (its diagram's grid ends a step later than its legs).
         let mut caps = vec![cuts[cuts.len() / 2], 0.5 * (cuts[1] + cuts[2])];
-        if let Some(t) = all
-            .iter()
-            .find(|a| matches!(a.0.kind, RemedyKind::Tune { .. }))
-        {
+        if let Some(t) = all.iter().find(tuned) {
             caps.extend([t.1, t.1 + 1e-6]);
         }
         for cap in caps {

@@ -30,7 +30,7 @@ impl Search<'_> {
             .unwrap_or(0);
         let exhausted = match stop {
             Some(budget) => format!("{budget} ran out"),
-            None if self.first_pass_cut => format!(
+            None if self.second_pass_end.is_some() => format!(
                 "the first pass spent its share of the search's budget ({} of {} schedules), \
                  and the second pass tried every remedy along the way that got furthest ({} \
                  schedules checked in all)",

@@ -60,6 +60,11 @@ impl Search<'_> {
         ((1.0 - search.second_pass_share) * search.max_nodes as f64).ceil() as usize
     }
 
+    /// Whether the second pass, after a first pass that was cut, has checked its share.
+    pub(super) fn second_pass_spent(&self) -> bool {
+        self.second_pass_end.is_some_and(|end| self.checked >= end)
+    }
+
     /// The schedules the second pass may check after a first pass that was cut.
     pub(super) fn second_pass_budget(&self) -> usize {
         self.opts.search.max_nodes - self.first_pass_budget()

@@ -213,11 +213,9 @@ struct Search<'a> {
     /// Whether the search is in its second pass ([`Search::widen`]): re-sequencings
     /// exchange route ends, and a robot on its way may pull in at a passing place.
     second_pass: bool,
-    /// Whether the first pass ended with nodes still queued, its share of the budget spent
-    /// or its patience lost.
-    first_pass_cut: bool,
-    /// The schedules checked by which the second pass ends, once the first was cut: its
-    /// share of the budget after the first pass's end.
+    /// The schedules checked by which the second pass ends, once the first pass was cut
+    /// with nodes still queued (its share of the budget spent, or its patience): the
+    /// second's share after that.
     second_pass_end: Option<usize>,
 }
 
@@ -278,7 +276,6 @@ impl<'a> Search<'a> {
             capped: 0,
             repairs: Vec::new(),
             second_pass: false,
-            first_pass_cut: false,
             second_pass_end: None,
         }
     }
@@ -293,8 +290,7 @@ impl Search<'_> {
     ) -> Result<Option<String>, InputError> {
         while let Some(Reverse((.., id))) = self.queue.pop() {
             let stop = self.budget_spent(started);
-            let second_pass_spent = self.second_pass_end.is_some_and(|end| self.checked >= end);
-            if stop.is_some() || second_pass_spent {
+            if stop.is_some() || self.second_pass_spent() {
                 return Ok(stop);
             }
             if self.first_pass_spent() || self.stalled() {
@@ -302,7 +298,6 @@ impl Search<'_> {
                 // left queued waits no longer.
                 self.second_pass_end = Some(self.checked + self.second_pass_budget());
                 self.queue.clear();
-                self.first_pass_cut = true;
                 return Ok(None);
             }
             if !self.worth(id) {
