@@ -190,7 +190,8 @@ impl Search<'_> {
     }
 
     /// The search's second pass, once its queue is empty or the first pass has spent its
-    /// share of the budget ([`SearchOptions::second_pass_share`]). On the way to the best
+    /// share of the budget ([`SearchOptions::second_pass_share`]) or stopped paying
+    /// ([`SearchOptions::patience`]). On the way to the best
     /// certified schedule (without one, to the schedule whose collision came latest), every
     /// re-sequencing is asked again, this time exchanging route ends (2-opt*,
     /// [`SequencerOptions::route_exchanges`]), and every colliding schedule is expanded
@@ -207,6 +208,7 @@ impl Search<'_> {
     ///
     /// [`SequencerOptions::route_exchanges`]: crate::wcp::sequencer::SequencerOptions::route_exchanges
     /// [`SearchOptions::second_pass_share`]: crate::wcp::SearchOptions::second_pass_share
+    /// [`SearchOptions::patience`]: crate::wcp::SearchOptions::patience
     pub(super) fn widen(&mut self) -> bool {
         if self.second_pass {
             return false;
