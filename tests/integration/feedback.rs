@@ -863,6 +863,51 @@ fn a_ring_of_six_is_solved_with_two_moves_timed_together() {
     assert_ring_solved(6, 21.145, |k| matches!(k, RemedyKind::Tune { .. }));
 }
 
+/// Two robots whose paths cross twice (`tests/cells/crossing-twice.json`): the large A goes
+/// over a block, the small B under it through a gap too narrow for A, both to tasks on the
+/// far side and back. On the way back each must let the other through one crossing: A holds
+/// at its task while B passes the first, B holds under the block while A passes the second.
+/// A single remedy delays one robot: without `tune` the search builds every chain of them
+/// it can (10 schedules, a larger budget changes nothing) and certifies 23.873 at best;
+/// with it, 23.523 (blind 22.938), the two moves timed together with a hold of each robot.
+#[test]
+fn two_robots_crossing_twice_yield_in_turn_when_tuned() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cells/crossing-twice.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let cell = parse_cell(&text, &path).unwrap().cell;
+    let mut untuned = all_but("tune");
+    untuned.search.max_nodes = 50_000;
+    let without = solve_with(&cell, &untuned);
+    assert!(without.collision_free, "{:?}", without.failure);
+    assert!(
+        without.nodes < 100,
+        "{} schedules: the search did not run out of children",
+        without.nodes
+    );
+    let makespan = without.schedule.makespan;
+    assert!((makespan - 23.873).abs() < 1e-3, "{makespan}");
+
+    let solved = solve(&cell);
+    assert_certified_within_limits(&cell, &solved);
+    let makespan = solved.schedule.makespan;
+    assert!((makespan - 23.523).abs() < 1e-3, "{makespan}");
+    let holds = remedies(&solved)
+        .into_iter()
+        .find_map(|r| match &r.kind {
+            RemedyKind::Tune { holds, .. } => Some(holds.clone()),
+            _ => None,
+        })
+        .expect("two moves timed together");
+    // A at its task (the start of its way back), B under the block, left of A's crossing.
+    let task_a = workcell::geometry::Vec2::new(4.2, -1.5);
+    assert!(holds
+        .iter()
+        .any(|h| h.robot == 0 && (h.at - task_a).norm() < 1e-9));
+    assert!(holds
+        .iter()
+        .any(|h| h.robot == 1 && h.at.y < -1.35 && h.at.x < 0.0));
+}
+
 /// Ring `k` of seed 1 certified at `makespan`, with a remedy on the branch of the answer that
 /// `used` recognises.
 fn assert_ring_solved(k: u64, makespan: f64, used: fn(&RemedyKind) -> bool) {
