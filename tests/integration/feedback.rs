@@ -47,6 +47,15 @@ fn none_of(names: &[&str]) -> SolveOptions {
     only(&rest)
 }
 
+/// Cell `k` of `kind` (seed 1) solved with the default options, certified at `makespan`.
+fn solved_at(kind: ConflictKind, k: u64, makespan: f64) -> Solved {
+    let solved = solve(&conflict_cell(kind, k));
+    assert!(solved.collision_free, "{:?}", solved.failure);
+    let got = solved.schedule.makespan;
+    assert!((got - makespan).abs() < 1e-3, "{}-{k}: {got}", kind.name());
+    solved
+}
+
 fn remedies(solved: &Solved) -> Vec<&Remedy> {
     solved
         .iterations
@@ -475,10 +484,7 @@ fn the_answer_holds_no_longer_than_the_other_robots_allow() {
 /// (waits, pauses, parkings); keeping the answer as it was found on that tie, 6.16.
 #[test]
 fn the_answer_is_shortened_where_its_makespan_stays() {
-    let solved = solve(&conflict_cell(ConflictKind::Junction, 1));
-    assert!(solved.collision_free, "{:?}", solved.failure);
-    let makespan = solved.schedule.makespan;
-    assert!((makespan - 43.151).abs() < 1e-3, "{makespan}");
+    let solved = solved_at(ConflictKind::Junction, 1, 43.151);
     let held: f64 = (solved.schedule.robots.iter())
         .flat_map(|s| &s.segments)
         .filter(|g| {
@@ -896,10 +902,7 @@ fn a_ring_of_six_is_solved_with_two_moves_timed_together() {
 /// one found after 63, the same to the last printed digit.
 #[test]
 fn a_schedule_shorter_only_in_its_last_bits_is_no_better() {
-    let solved = solve(&conflict_cell(ConflictKind::Ring, 5));
-    assert!(solved.collision_free, "{:?}", solved.failure);
-    let makespan = solved.schedule.makespan;
-    assert!((makespan - 20.412).abs() < 1e-3, "{makespan}");
+    let solved = solved_at(ConflictKind::Ring, 5, 20.412);
     let found = solved.found_after.expect("an answer");
     assert!(
         found <= 50 && solved.nodes <= 55,
