@@ -946,7 +946,8 @@ fn two_robots_crossing_twice_yield_in_turn_when_tuned() {
             _ => None,
         })
         .expect("two moves timed together");
-    // A at its task (the start of its way back), B under the block, left of A's crossing.
+    // A at its task (the start of its way back), B under the block, short of the crossing
+    // on the left, where A passes first.
     let task_a = workcell::geometry::Vec2::new(4.2, -1.5);
     assert!(holds
         .iter()
