@@ -68,6 +68,12 @@ pub struct FeedbackArgs {
     /// only once no node is left) to 1.
     #[arg(long, default_value_t = 0.3, value_parser = share, allow_negative_numbers = true)]
     second_pass_share: f64,
+    /// Also search from plans with one robot fewer, at home throughout: this many, of the
+    /// robots whose tasks others may all do, those whose plans without them are shortest
+    /// (robots that share a door may finish sooner with one of them at home; they share
+    /// the search's budget).
+    #[arg(long, default_value_t = 0)]
+    idle_roots: usize,
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour (with it make-way: a robot in another's way leaves ahead of it, the other
     /// waits), step-aside, pass-aside (a robot on its way pulls in at a passing place beside
@@ -110,6 +116,7 @@ impl FeedbackArgs {
         };
         opts.search.patience = (self.search_patience > 0).then_some(self.search_patience as usize);
         opts.search.second_pass_share = self.second_pass_share;
+        opts.search.idle_roots = self.idle_roots;
         opts.search.time_limit = match (self.search_time, limited) {
             (Some(s), _) => Duration::try_from_secs_f64(s).unwrap_or(Duration::MAX),
             (None, true) => Duration::MAX,

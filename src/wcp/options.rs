@@ -134,6 +134,13 @@ pub struct SearchOptions {
     /// routes and conflicts, the remedies of a collision between the same two schedules.
     /// On by default; off only to check that remembering changes nothing but the time.
     pub remember: bool,
+    /// Plans with one robot fewer searched beside the collision-blind plan: as many as
+    /// this, of the robots whose tasks others may all do, those whose plans without them
+    /// are shortest by makespan plus mean route time (`search/idle.rs`). Robots that share
+    /// a bottleneck (a door) can finish sooner with one of them at home: the doorways of
+    /// docs/benchmarks.md. 0, the default: none, since they share the budget with the
+    /// collision-blind plan.
+    pub idle_roots: usize,
 }
 
 impl Default for SearchOptions {
@@ -145,6 +152,7 @@ impl Default for SearchOptions {
             patience: Some(2000),
             second_pass_share: 0.3,
             remember: true,
+            idle_roots: 0,
         }
     }
 }

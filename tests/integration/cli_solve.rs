@@ -984,3 +984,23 @@ fn a_task_pose_overlapping_a_fixture_is_told_as_such() {
         );
     }
 }
+
+/// `--idle-roots` reaches the search: on the doorway of seven robots, the plan without R1
+/// is searched beside the collision-blind one, and the answer leaves R1 at home.
+#[test]
+fn idle_roots_leave_a_robot_at_home() {
+    let doorway =
+        workcell::generate::generate_conflict_cell(workcell::generate::ConflictKind::Doorway, 1, 3);
+    let cell = temp_dir_made("solve", "idle").join("doorway-3.json");
+    std::fs::write(&cell, doorway.to_string()).unwrap();
+    let cell = cell.to_str().unwrap();
+    let out = workcell(&["solve", cell, "--json", "--idle-roots", "1"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let result = json(&out);
+    assert_eq!(result["sequences"]["R1"], serde_json::json!([]));
+    let blind = &result["blind_sequences"]["R1"];
+    assert!(
+        !blind.as_array().unwrap().is_empty(),
+        "R1 works in the blind plan"
+    );
+}

@@ -34,6 +34,7 @@ mod feedback;
 #[cfg(all(feature = "cli", unix))]
 mod fuzz_outputs;
 mod generate;
+mod idle;
 mod layers;
 mod lazy;
 mod library_api;

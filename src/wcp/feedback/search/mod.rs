@@ -47,6 +47,7 @@
 
 mod answer;
 mod budget;
+mod idle;
 mod order;
 mod pending;
 mod queue;
@@ -235,6 +236,7 @@ pub(super) fn solve(
     search.check_all(&[root], progress);
     if search.collision(root).is_some() {
         search.enqueue(root);
+        search.add_idle_roots(&blind, progress)?;
     }
     let started = Instant::now();
     let mut stop = search.run(started, progress)?;

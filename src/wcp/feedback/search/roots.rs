@@ -1,7 +1,8 @@
 //! The roots of the search: the collision-blind plan, and its anytime refinements. With time
 //! left under a time limit once the search has run out of nodes, the sequencer searches on
 //! from the collision-blind plan, and a shorter plan becomes a new root of the search
-//! (checked, and searched when it collides).
+//! (checked, and searched when it collides). When asked, plans with one robot fewer are
+//! roots too, from the start (`idle.rs`).
 
 use super::{Node, Search};
 use crate::cell::InputError;
