@@ -67,16 +67,16 @@ fn the_plans_searched_are_those_that_move_least() {
 }
 
 /// A plan with one robot fewer keeps it home through the search's re-sequencings: on the
-/// doorway of six robots, the answer re-sequences the plan without R5 and R5 stays home
+/// doorway of five robots, the answer re-sequences the plan without R5 and R5 stays home
 /// (31.422; re-sequenced without that rule, the branch ends at 31.540). The roots share the
 /// budget: without them the search certifies 31.288 here.
 #[test]
 fn a_re_sequencing_keeps_the_robot_at_home() {
     let cell = doorway(6);
     let fewer = solved(&cell, 2);
-    assert_makespan(&fewer, 31.422, "the doorway of six");
+    assert_makespan(&fewer, 31.422, "the doorway of five");
     assert_eq!(at_home(&cell, &fewer), ["R5"]);
     let first = fewer.iterations[0].remedy.as_ref().map(|r| &r.kind);
     assert_eq!(first, Some(&RemedyKind::Resequence));
-    assert_makespan(&solved(&cell, 0), 31.288, "all six");
+    assert_makespan(&solved(&cell, 0), 31.288, "all five");
 }
