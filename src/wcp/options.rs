@@ -139,7 +139,7 @@ pub struct SearchOptions {
     /// are shortest by makespan plus mean route time (`search/idle.rs`). Robots that share
     /// a bottleneck (a door) can finish sooner with one of them at home: the doorways of
     /// docs/benchmarks.md. 0, the default: none, since they share the budget with the
-    /// collision-blind plan.
+    /// collision-blind plan. A re-sequencing: none without [`Remedies::resequence`].
     pub idle_roots: usize,
 }
 

@@ -6,7 +6,7 @@ use crate::common::solve_with;
 use std::path::PathBuf;
 use workcell::cell::{parse_cell, Cell};
 use workcell::generate::{generate_conflict_cell, ConflictKind};
-use workcell::wcp::{RemedyKind, SolveOptions, Solved};
+use workcell::wcp::{Remedies, RemedyKind, SolveOptions, Solved};
 
 fn doorway(k: u64) -> Cell {
     let text = generate_conflict_cell(ConflictKind::Doorway, 1, k).to_string();
@@ -79,4 +79,24 @@ fn a_re_sequencing_keeps_the_robot_at_home() {
     let first = fewer.iterations[0].remedy.as_ref().map(|r| &r.kind);
     assert_eq!(first, Some(&RemedyKind::Resequence));
     assert_makespan(&solved(&cell, 0), 31.288, "all five");
+}
+
+/// A plan with one robot fewer is a re-sequencing: without `resequence` among the remedies
+/// the routes stay as planned, and the option changes nothing.
+#[test]
+fn without_re_sequencing_every_robot_keeps_its_route() {
+    let cell = doorway(3);
+    let names: Vec<&str> = (Remedies::NAMES.into_iter())
+        .filter(|n| *n != "resequence")
+        .collect();
+    let with = |idle_roots: usize| {
+        let mut opts = SolveOptions::default();
+        opts.search.remedies = Remedies::of_names(names.iter().copied()).unwrap();
+        opts.search.idle_roots = idle_roots;
+        solve_with(&cell, &opts)
+    };
+    let (plain, asked) = (with(0), with(2));
+    assert!(at_home(&cell, &asked).is_empty());
+    assert_eq!(asked.routes, plain.routes);
+    assert_eq!(asked.schedule.makespan, plain.schedule.makespan);
 }
