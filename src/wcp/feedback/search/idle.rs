@@ -16,8 +16,6 @@
 
 use super::Search;
 use crate::cell::{Cell, InputError};
-use crate::wcp::feedback::outcome::build;
-use crate::wcp::legs::default_legs;
 use crate::wcp::prepare::Progress;
 use crate::wcp::sequence::{repairing, sequence_with};
 use crate::wcp::sequencer::{task_node, Conflict, Solution, Step};
@@ -82,13 +80,10 @@ impl Search<'_> {
                 if plan.violations > 0 {
                     return Ok(None);
                 }
-                let legs = default_legs(cell.robots.len());
-                let timed = build(cell, &plan.sequences, &legs, &prepared.moves)?;
-                let mean =
-                    timed.robots.iter().map(|s| s.end).sum::<f64>() / cell.robots.len() as f64;
+                let mean = plan.total / cell.robots.len() as f64;
                 Ok(Some(Idle {
                     robot: r,
-                    score: timed.makespan + mean,
+                    score: plan.makespan + mean,
                     sequences: plan.sequences,
                     bans,
                 }))
