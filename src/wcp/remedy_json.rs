@@ -334,6 +334,7 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
                         Shortening::Pause => "pause",
                         Shortening::Park => "park",
                         Shortening::Slow => "slow",
+                        Shortening::Straight => "straight",
                     },
                     before: h.before,
                     after: h.after,
@@ -454,6 +455,9 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
                             "{r} makes its {on} {:.3} times slower (was {:.3})",
                             h.after, h.before
                         ),
+                        Shortening::Straight => {
+                            format!("{r} takes its planned way on its {on}: {after} (was {before})")
+                        }
                     }
                 })
                 .collect();

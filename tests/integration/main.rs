@@ -49,5 +49,6 @@ mod readme;
 mod sequencer;
 mod solve;
 mod stability;
+mod straight;
 #[cfg(feature = "cli")]
 mod view;

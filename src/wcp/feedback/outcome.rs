@@ -148,6 +148,9 @@ pub enum Shortening {
     Park,
     /// A motion of the leg run slower than planned.
     Slow,
+    /// The leg's way, changed by a remedy, back to its planned move: `before` and `after`
+    /// are the leg's time (wait, way and stops) in seconds.
+    Straight,
 }
 
 /// A stop of a robot on a move timed with another's ([`RemedyKind::Tune`]).

@@ -2,23 +2,27 @@
 //!
 //! Each remedy makes the least change that clears one collision, given the schedule it
 //! answers; changes made later on the same branch move the other robots, so an early wait
-//! may no longer need all of its length. Once the search ends, every schedule that was the
-//! best when found has its slack shortened: waits, holds (pauses, stays at parking poses)
-//! and motions run slower than planned. Robot by robot (the one that ends last first, since
-//! a robot that goes sooner may leave room for it), in passes until none shortens, a
-//! robot's first slack in time order that can be shortened is cut to the least of a few
+//! may no longer need all of its length, and an early detour may no longer be needed at
+//! all. Once the search ends, every schedule that was the best when found has its slack
+//! shortened: ways that remedies changed (detours, stays at parking poses, pauses, a
+//! convoy's lap), waits, holds and motions run slower than planned. Robot by robot (the one
+//! that ends last first, since a robot that goes sooner may leave room for it), in passes
+//! until none shortens: a robot's first leg in time order whose changed way can give way to
+//! its planned move again (clear of every other robot, ending the robot no later) does so;
+//! else its first slack in time order that can be shortened is cut to the least of a few
 //! fractions of it, then bisected, after which the checker proves that robot clear of
 //! every other from the leg on. The answer is the shortest of all of them, shortened or
-//! not: one found earlier may shorten further. Paths are kept: only when a robot rests
-//! where it already rests, and how fast it runs its path, change, so the fixtures need no
-//! new check (the result is checked whole anyway).
+//! not: one found earlier may shorten further. A planned move is certified clear of the
+//! fixtures when planned, and the other changes keep paths (only when a robot rests where
+//! it already rests, and how fast it runs its path, change), so the fixtures need no new
+//! check (the result is checked whole anyway).
 
 use super::{Node, Outcome, Search, Status};
 use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened, Shortening};
 use crate::wcp::legs::{with_leg, HoldReason, Leg, Legs, Piece};
 use crate::wcp::prepare::Progress;
-use crate::wcp::schedule::{route_nodes, RobotSchedule, Schedule};
+use crate::wcp::schedule::{route_nodes, Activity, RobotSchedule, Schedule};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
@@ -73,7 +77,8 @@ impl Search<'_> {
         let (routes, mut legs, mut robots) =
             (node.routes.clone(), node.legs.clone(), node.robots.clone());
         let mut shortened: Vec<Shortened> = Vec::new();
-        let mut which: Vec<(usize, Slack)> = Vec::new();
+        // The slack each entry of `shortened` shortened (none for a way straightened).
+        let mut which: Vec<Option<(usize, Slack)>> = Vec::new();
         let mut steps = 0;
         // Passes over the robots, the one that ends last first, until none can shorten its
         // slack: a robot that goes sooner may leave room for the one that ends last.
@@ -90,6 +95,29 @@ impl Search<'_> {
             let mut order: Vec<usize> = (0..robots.len()).collect();
             order.sort_by(|&a, &b| robots[b].end.total_cmp(&robots[a].end).then(a.cmp(&b)));
             for r in order {
+                if let Some((m, before, after, s)) =
+                    self.straighten(id, r, &routes[r], &legs, &robots)
+                {
+                    let nodes = route_nodes(&routes[r]);
+                    which.push(None);
+                    shortened.push(Shortened {
+                        robot: r,
+                        leg: m,
+                        nodes: (nodes[m], nodes[(m + 1).min(nodes.len() - 1)]),
+                        kind: Shortening::Straight,
+                        before,
+                        after,
+                    });
+                    let planned = Leg {
+                        pieces: None,
+                        ..legs[r][m].clone()
+                    };
+                    legs = with_leg(&legs, r, m, planned);
+                    robots[r] = Arc::new(s);
+                    steps += 1;
+                    changed = true;
+                    continue;
+                }
                 let Some((slack, before, after, s)) =
                     self.shorten(id, r, &routes[r], &legs, &robots)
                 else {
@@ -103,11 +131,11 @@ impl Search<'_> {
                     _ => (before, after),
                 };
                 // Slack shortened again is one entry, from its first length to its last.
-                match which.iter().position(|&w| w == (r, slack)) {
+                match which.iter().position(|&w| w == Some((r, slack))) {
                     Some(k) => shortened[k].after = after,
                     None => {
                         let nodes = route_nodes(&routes[r]);
-                        which.push((r, slack));
+                        which.push(Some((r, slack)));
                         shortened.push(Shortened {
                             robot: r,
                             leg: slack.leg,
@@ -172,6 +200,42 @@ impl Search<'_> {
         free.then_some(child)
     }
 
+    /// The first leg of robot `r` (in time order) whose way a remedy changed (a detour, a
+    /// stay at a parking pose, a pause, a convoy's lap) and that can take its planned move
+    /// again: clear of every other robot from the leg on, and ending the robot no later.
+    /// With the leg's time before and after, and the robot's new plan.
+    fn straighten(
+        &self,
+        id: usize,
+        r: usize,
+        route: &[usize],
+        legs: &Legs,
+        robots: &[Arc<RobotSchedule>],
+    ) -> Option<(usize, f64, f64, RobotSchedule)> {
+        let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
+        let opts = &self.opts.check;
+        let old = &robots[r];
+        legs[r].iter().enumerate().find_map(|(m, leg)| {
+            leg.pieces.as_ref()?;
+            let (t0, before) = leg_span(old, m)?;
+            let planned = Leg {
+                pieces: None,
+                ..leg.clone()
+            };
+            let changed = with_leg(legs, r, m, planned);
+            let s = RobotSchedule::build(cell, r, route, &changed[r], moves).ok()?;
+            if s.end > old.end {
+                return None;
+            }
+            let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
+                let t1 = s.end.max(robots[y].end);
+                clears(cell, (r, &s), (y, &robots[y]), (t0, t1), opts)
+            });
+            let (_, after) = leg_span(&s, m)?;
+            clear.then_some((m, before, after, s))
+        })
+    }
+
     /// The first slack of robot `r` (in time order) that can be shortened, with its
     /// [`excess`] before and after and the robot's new plan.
     fn shorten(
@@ -229,6 +293,16 @@ impl Search<'_> {
         }
         None
     }
+}
+
+/// When leg `m` of a robot's plan starts, and how long it takes to where it leads (its
+/// wait, way and stops; not the task there).
+fn leg_span(s: &RobotSchedule, m: usize) -> Option<(f64, f64)> {
+    let mut of_leg = (s.segments.iter())
+        .filter(|g| g.leg == Some(m) && !matches!(g.activity, Activity::Work(_)));
+    let first = of_leg.next()?;
+    let end = of_leg.next_back().map_or(first.end, |g| g.end);
+    Some((first.start, end - first.start))
 }
 
 /// Robot `r`'s slack, in time order: each leg's wait, then its holds and its motions run
