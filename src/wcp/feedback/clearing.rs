@@ -9,6 +9,7 @@
 
 use crate::cell::{Cell, RobotKind};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
+use crate::geometry::{closest_features, Posed, WalkTolerances};
 use crate::motion::{Sample, Trajectory};
 use crate::wcp::schedule::RobotSchedule;
 
@@ -16,6 +17,11 @@ use crate::wcp::schedule::RobotSchedule;
 /// monotone (a robot may pass before the other arrives, or only after it has gone), so the
 /// scan finds the first value that clears before bisection refines it.
 const SCAN: usize = 12;
+/// Closer than this share of δ at an instant of the window's samples: a contact the checker
+/// cannot miss (it evaluates every sample instant of both robots), so the candidate does
+/// not clear, found without the check. Half of δ, so that the checker's own rounding could
+/// not judge that instant clear.
+const SURE_CONTACT: f64 = 0.5;
 /// Bisection steps of [`least`] after the scan: the answer is within 2⁻⁸ of a scan step
 /// above the least value that clears.
 const BISECTIONS: usize = 8;
@@ -23,6 +29,19 @@ const BISECTIONS: usize = 8;
 /// True when the checker proves robots `x` and `y`, as scheduled, at least δ apart over
 /// `[t0, t1]`.
 pub(super) fn clears(
+    cell: &Cell,
+    (x, sx): (usize, &RobotSchedule),
+    (y, sy): (usize, &RobotSchedule),
+    (t0, t1): (f64, f64),
+    opts: &CheckOptions,
+) -> bool {
+    // Most candidates fail, most of them where a sample instant already shows the contact.
+    !contact_at_a_sample(cell, (x, sx), (y, sy), (t0, t1))
+        && checked_clear(cell, (x, sx), (y, sy), (t0, t1), opts)
+}
+
+/// [`clears`] by the checker alone.
+fn checked_clear(
     cell: &Cell,
     (x, sx): (usize, &RobotSchedule),
     (y, sy): (usize, &RobotSchedule),
@@ -63,6 +82,42 @@ pub(super) fn clears(
         Verdict::Contact { contact, .. } => contact.time > t1,
         verdict => verdict.is_certified_free(),
     }
+}
+
+/// Whether rigid robots `x` and `y` come closer than [`SURE_CONTACT`] δ at an instant of
+/// `x`'s samples over `[t0, t1]` (from the sample before `t0`), posed as the checker poses
+/// them: the checker would report a contact at that instant or before it. Arms are left to
+/// the checker.
+fn contact_at_a_sample(
+    cell: &Cell,
+    (x, sx): (usize, &RobotSchedule),
+    (y, sy): (usize, &RobotSchedule),
+    (t0, t1): (f64, f64),
+) -> bool {
+    let (Some(rx), Some(ry)) = (cell.robots[x].as_rigid(), cell.robots[y].as_rigid()) else {
+        return false;
+    };
+    let near = SURE_CONTACT * cell.delta;
+    let reach = rx.shape.radius() + ry.shape.radius() + near;
+    let tol = WalkTolerances::default();
+    let (first, last) = window(&sx.samples, t0, t1);
+    (sx.samples[first..=last].iter())
+        .take_while(|s| s.t <= t1)
+        .any(|s| {
+            // In a frame centred on x, as the checker works.
+            let q = sy.pose_at(s.t);
+            let rel = q.pos - s.pos;
+            if rel.norm() >= reach {
+                return false;
+            }
+            rx.pieces().iter().any(|a| {
+                let a = Posed::new(a, 0.0, 0.0, s.theta);
+                ry.pieces().iter().any(|b| {
+                    let b = Posed::new(b, rel.x, rel.y, q.theta);
+                    closest_features(&a, &b, None, &tol).distance < near
+                })
+            })
+        })
 }
 
 /// The first and last indices of the samples that pose the robot over `[t0, t1]`: from the
@@ -150,6 +205,75 @@ mod tests {
         tries.set(0);
         assert!(least(0.0, 12.0, f, |v| v < 2.0).is_none());
         assert_eq!(tries.get(), 2);
+    }
+
+    /// Robot X drives along y = 0 from x = -3 to 3 in 6 s, sampled every 0.5 s; Y stands at
+    /// (0, `off`). Both are the same 0.7 square: they are `off` - 0.7 apart as X passes.
+    fn passing(off: f64) -> (Cell, RobotSchedule, RobotSchedule) {
+        let text = r#"{"delta": 0.01, "obstacles": [],
+            "robots": [
+                {"name": "X", "home": [-3, 0, 0], "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+                 "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5},
+                {"name": "Y", "home": [0, 2, 0], "shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+                 "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5}],
+            "tasks": []}"#;
+        let cell = crate::cell::parse_cell(text, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let at = |t: f64, x: f64, y: f64, vx: f64| Sample {
+            t,
+            pos: crate::geometry::Vec2::new(x, y),
+            theta: 0.0,
+            vel: crate::geometry::Vec2::new(vx, 0.0),
+            omega: 0.0,
+        };
+        let schedule = |samples: Vec<Sample>| RobotSchedule {
+            route: Vec::new(),
+            segments: Vec::new(),
+            end: samples.last().unwrap().t,
+            samples,
+            joints: Vec::new(),
+            path: Vec::new(),
+        };
+        let drives = (0..=12).map(|k| at(0.5 * k as f64, -3.0 + 0.5 * k as f64, 0.0, 1.0));
+        let x = schedule(drives.collect());
+        let y = schedule(vec![at(0.0, 0.0, off, 0.0), at(6.0, 0.0, off, 0.0)]);
+        (cell, x, y)
+    }
+
+    /// The sample instants say "contact" only where the checker finds one: through, just
+    /// within and just outside δ, and clear. Closer than half of δ at a sample, they say it
+    /// without the checker.
+    #[test]
+    fn a_contact_at_a_sample_is_one_the_checker_finds() {
+        let opts = CheckOptions::default();
+        let window = (0.0, 6.0);
+        for (off, sure, clear) in [
+            (0.3, true, false),
+            (0.7 + 0.004, true, false),
+            (0.7 + 0.008, false, false),
+            (0.7 + 0.012, false, true),
+            (1.5, false, true),
+        ] {
+            let (cell, x, y) = passing(off);
+            let got = contact_at_a_sample(&cell, (0, &x), (1, &y), window);
+            assert_eq!(got, sure, "{off}");
+            assert_eq!(
+                checked_clear(&cell, (0, &x), (1, &y), window, &opts),
+                clear,
+                "{off}"
+            );
+            assert_eq!(
+                clears(&cell, (0, &x), (1, &y), window, &opts),
+                clear,
+                "{off}"
+            );
+            // X comes within δ of Y from t = 2.29 on, at the latest, after the window
+            // (0, 2.2), whose last sample (2.5) is past its end: not a contact of the window.
+            let early = (0.0, 2.2);
+            assert!(!contact_at_a_sample(&cell, (0, &x), (1, &y), early));
+            assert!(clears(&cell, (0, &x), (1, &y), early, &opts));
+        }
     }
 
     #[test]
