@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use workcell::cell::{parse_cell, parse_scene, scene_document, Cell};
 use workcell::collision::{check, CheckOptions};
 use workcell::generate::{generate_conflict_cell, ConflictKind};
-use workcell::wcp::{self, Activity, Feedback, Remedies, Remedy, RemedyKind, SolveOptions, Solved};
+use workcell::wcp::{self, Feedback, Remedies, Remedy, RemedyKind, SolveOptions, Solved};
 
 fn conflict_cell(kind: ConflictKind, k: u64) -> Cell {
     let text = generate_conflict_cell(kind, 1, k).to_string();
@@ -478,26 +478,6 @@ fn the_answer_holds_no_longer_than_the_other_robots_allow() {
     }
 }
 
-/// The answer's own shortening replaces it even where the makespan stays the same: a robot
-/// that does not set the makespan holds no longer than the others allow either. On the
-/// junction of seed 1, cell 1 (43.151), the robots of the answer hold 5.32 s in all
-/// (waits, pauses, parkings); keeping the answer as it was found on that tie, 6.16.
-#[test]
-fn the_answer_is_shortened_where_its_makespan_stays() {
-    let solved = solved_at(ConflictKind::Junction, 1, 43.151);
-    let held: f64 = (solved.schedule.robots.iter())
-        .flat_map(|s| &s.segments)
-        .filter(|g| {
-            matches!(
-                g.activity,
-                Activity::Wait(_) | Activity::Pause { .. } | Activity::Park { .. }
-            )
-        })
-        .map(|g| g.end - g.start)
-        .sum();
-    assert!(held < 5.4, "{held}");
-}
-
 /// `patience` ends the search once it stops paying, and only ends it sooner: the answer is
 /// the one a budget of that many schedules gives (the whole budget to the first pass, so
 /// that a smaller one does not move the second pass sooner). An answer found late earns as
@@ -800,9 +780,9 @@ fn every_ring_is_certified() {
 /// two robots gets there, and without the convoy the cell is refused with a failure that
 /// names the two robots blocking each other between the centre block and a wall and says
 /// what was exhausted. With it, all seven go round together, each following the one ahead
-/// (`remedies/following.rs`), and `ring-8` is certified at 26.830 (44 % over its blind
-/// 18.600: a whole lap, its holds then shortened and three robots' ways home back to their
-/// planned moves); with a following gap of 1.5 radius sums in motion too, 36.174, and as
+/// (`remedies/following.rs`), and `ring-8` is certified at 25.720 (38 % over its blind
+/// 18.600: a whole lap, its holds then shortened and robots' ways back to their planned
+/// moves, some after a wait); with a following gap of 1.5 radius sums in motion too, 36.174, and as
 /// one rigid ring, all stopping while any works, 42.032.
 #[test]
 fn a_ring_that_must_turn_whole_goes_round_as_a_convoy() {
@@ -822,13 +802,13 @@ fn a_ring_that_must_turn_whole_goes_round_as_a_convoy() {
         "{failure}"
     );
     let all_seven = |k: &RemedyKind| matches!(k, RemedyKind::Convoy { robots, following: true, .. } if robots.len() == 7);
-    assert_ring_solved(8, 26.830, all_seven);
+    assert_ring_solved(8, 25.720, all_seven);
 }
 
 /// Six robots on a wider ring, refused after 7 schedules without the convoy (every remedy
-/// tried): with it, `ring-3-6` of seed 3 is certified at 23.544, the whole ring going
+/// tried): with it, `ring-3-6` of seed 3 is certified at 23.473, the whole ring going
 /// round once, each robot following the one ahead, then repaired by single remedies, their
-/// holds shortened and five ways back to their planned moves.
+/// holds shortened and ways back to their planned moves.
 #[test]
 fn a_ring_where_nothing_else_separates_goes_round_as_a_convoy() {
     let convoy = |k: &RemedyKind| {
@@ -844,7 +824,7 @@ fn a_ring_where_nothing_else_separates_goes_round_as_a_convoy() {
     let text = generate_conflict_cell(ConflictKind::Ring, 3, 6).to_string();
     let cell = parse_cell(&text, &PathBuf::from("ring")).unwrap().cell;
     assert!(!solve_with(&cell, &all_but("convoy")).collision_free);
-    assert_ring_solved_with((3, 6), &SolveOptions::default(), 23.544, convoy);
+    assert_ring_solved_with((3, 6), &SolveOptions::default(), 23.473, convoy);
 }
 
 /// A robot at work on a ring corridor one robot wide, in the way of another coming along
@@ -882,9 +862,9 @@ fn a_ring_is_solved_the_other_way_round_from_beside_the_other() {
 
 /// Six robots on a ring, where a pair collides again after its single remedies: `tune`
 /// times their two moves together, one robot holding at a waypoint of its move while the
-/// other passes (`remedies/tune.rs`), and `ring-6` is certified at 21.145 (27 % over its
+/// other passes (`remedies/tune.rs`), and `ring-6` is certified at 21.108 (27 % over its
 /// blind 16.612; 21.611 before slack was shortened, a schedule found earlier now shortening
-/// further); without `tune` (and the convoy) it is refused after 335 schedules,
+/// further, and 21.145 before a way could be given back for a wait); without `tune` (and the convoy) it is refused after 335 schedules,
 /// naming the two robots that block each other.
 #[test]
 fn a_ring_of_six_is_solved_with_two_moves_timed_together() {
@@ -893,7 +873,7 @@ fn a_ring_of_six_is_solved_with_two_moves_timed_together() {
     let without = solve_with(&cell, &none_of(&["tune", "convoy"]));
     assert!(!without.collision_free);
     assert!(without.failure.unwrap().contains(" block each other at ("));
-    assert_ring_solved(6, 21.145, |k| matches!(k, RemedyKind::Tune { .. }));
+    assert_ring_solved(6, 21.108, |k| matches!(k, RemedyKind::Tune { .. }));
 }
 
 /// Makespans that differ only in their last bits are the same (`SAME_MAKESPAN`): a schedule

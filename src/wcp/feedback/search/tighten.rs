@@ -8,21 +8,24 @@
 //! convoy's lap), waits, holds and motions run slower than planned. Robot by robot (the one
 //! that ends last first, since a robot that goes sooner may leave room for it), in passes
 //! until none shortens: a robot's first leg in time order whose changed way can give way to
-//! its planned move again (clear of every other robot, ending the robot no later) does so;
-//! else its first slack in time order that can be shortened is cut to the least of a few
-//! fractions of it, then bisected, after which the checker proves that robot clear of
-//! every other from the leg on. The answer is the shortest of all of them, shortened or
-//! not: one found earlier may shorten further. A planned move is certified clear of the
-//! fixtures when planned, and the other changes keep paths (only when a robot rests where
-//! it already rests, and how fast it runs its path, change), so the fixtures need no new
-//! check (the result is checked whole anyway).
+//! its planned move again does so (`straighten.rs`); else its first slack in time order
+//! that can be shortened is cut to the least of a few fractions of it, then bisected, after
+//! which the checker proves that robot clear of every other from the leg on. A way may
+//! also be given back for a longer wait at the leg's start; such a wait holds room that the
+//! others' shortening might have used, or leaves them room they need, so each schedule is
+//! shortened twice, those waits tried only once nothing else shortens and from the start,
+//! and the shorter kept. The answer is the shortest of all of them, shortened or not: one
+//! found earlier may shorten further. A planned move is certified clear of the fixtures
+//! when planned, and the other changes keep paths (only when a robot rests where it already
+//! rests, and how fast it runs its path, change), so the fixtures need no new check (the
+//! result is checked whole anyway).
 
 use super::{Node, Outcome, Search, Status};
 use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened, Shortening};
 use crate::wcp::legs::{with_leg, HoldReason, Leg, Legs, Piece};
 use crate::wcp::prepare::Progress;
-use crate::wcp::schedule::{route_nodes, Activity, RobotSchedule, Schedule};
+use crate::wcp::schedule::{route_nodes, RobotSchedule, Schedule};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
@@ -53,25 +56,30 @@ impl Search<'_> {
             if self.prepared.deadline.is_some_and(|d| Instant::now() >= d) {
                 break;
             }
-            let Some(child) = self.tighten(id) else {
-                continue;
-            };
-            let best = self.best.expect("an incumbent is certified");
-            let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
-            progress.iteration(self.checked, m, None);
-            // Shortened slack brings robots home no later: the answer's own shortening wins
-            // a tie.
-            if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
-                // Found when the schedule it shortens was.
-                (self.best, self.best_at) = (Some(child), found_at);
-                progress.certified(m);
+            // Ways given back for a wait late, then early: each order wins on some cells.
+            for early in [false, true] {
+                let Some(child) = self.tighten(id, early) else {
+                    continue;
+                };
+                let best = self.best.expect("an incumbent is certified");
+                let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
+                progress.iteration(self.checked, m, None);
+                // Shortened slack brings robots home no later: the answer's own shortening
+                // wins a tie.
+                if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
+                    // Found when the schedule it shortens was.
+                    (self.best, self.best_at) = (Some(child), found_at);
+                    progress.certified(m);
+                }
             }
         }
     }
 
     /// Shortens the slack of node `id`, a certified schedule: the shortened schedule, a
-    /// child of it checked as a changed node is, when it is certified.
-    fn tighten(&mut self, id: usize) -> Option<usize> {
+    /// child of it checked as a changed node is, when it is certified. `early`: a changed
+    /// way may be given back for a wait from the first pass on (else only once nothing
+    /// else shortens).
+    fn tighten(&mut self, id: usize, early: bool) -> Option<usize> {
         let clock = Instant::now();
         let node = &self.nodes[id];
         let (routes, mut legs, mut robots) =
@@ -84,6 +92,12 @@ impl Search<'_> {
         // slack: a robot that goes sooner may leave room for the one that ends last.
         let mut changed = true;
         let mut passes = 0;
+        // Whether a changed way may take its planned move after a wait: only once nothing
+        // else shortens, since the wait takes room that other robots' shortening might
+        // have used.
+        // A way given back for a wait takes only a remedy the solve may take.
+        let may_wait = self.opts.search.remedies.wait;
+        let mut waiting = early && may_wait;
         let deadline = self.prepared.deadline;
         while changed && steps < MAX_STEPS && passes < MAX_PASSES {
             // Under a time limit, what was shortened by then.
@@ -95,8 +109,8 @@ impl Search<'_> {
             let mut order: Vec<usize> = (0..robots.len()).collect();
             order.sort_by(|&a, &b| robots[b].end.total_cmp(&robots[a].end).then(a.cmp(&b)));
             for r in order {
-                if let Some((m, before, after, s)) =
-                    self.straighten(id, r, &routes[r], &legs, &robots)
+                if let Some((m, before, after, planned, s)) =
+                    self.straighten(id, r, &routes[r], &legs, &robots, waiting)
                 {
                     let nodes = route_nodes(&routes[r]);
                     which.push(None);
@@ -108,10 +122,6 @@ impl Search<'_> {
                         before,
                         after,
                     });
-                    let planned = Leg {
-                        pieces: None,
-                        ..legs[r][m].clone()
-                    };
                     legs = with_leg(&legs, r, m, planned);
                     robots[r] = Arc::new(s);
                     steps += 1;
@@ -157,6 +167,9 @@ impl Search<'_> {
                     break;
                 }
             }
+            if !changed && !waiting && may_wait {
+                (waiting, changed) = (true, true);
+            }
         }
         self.times.scheduling += clock.elapsed();
         if shortened.is_empty() {
@@ -198,42 +211,6 @@ impl Search<'_> {
         });
         self.times.checking += clock.elapsed();
         free.then_some(child)
-    }
-
-    /// The first leg of robot `r` (in time order) whose way a remedy changed (a detour, a
-    /// stay at a parking pose, a pause, a convoy's lap) and that can take its planned move
-    /// again: clear of every other robot from the leg on, and ending the robot no later.
-    /// With the leg's time before and after, and the robot's new plan.
-    fn straighten(
-        &self,
-        id: usize,
-        r: usize,
-        route: &[usize],
-        legs: &Legs,
-        robots: &[Arc<RobotSchedule>],
-    ) -> Option<(usize, f64, f64, RobotSchedule)> {
-        let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
-        let opts = &self.opts.check;
-        let old = &robots[r];
-        legs[r].iter().enumerate().find_map(|(m, leg)| {
-            leg.pieces.as_ref()?;
-            let (t0, before) = leg_span(old, m)?;
-            let planned = Leg {
-                pieces: None,
-                ..leg.clone()
-            };
-            let changed = with_leg(legs, r, m, planned);
-            let s = RobotSchedule::build(cell, r, route, &changed[r], moves).ok()?;
-            if s.end > old.end {
-                return None;
-            }
-            let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
-                let t1 = s.end.max(robots[y].end);
-                clears(cell, (r, &s), (y, &robots[y]), (t0, t1), opts)
-            });
-            let (_, after) = leg_span(&s, m)?;
-            clear.then_some((m, before, after, s))
-        })
     }
 
     /// The first slack of robot `r` (in time order) that can be shortened, with its
@@ -293,16 +270,6 @@ impl Search<'_> {
         }
         None
     }
-}
-
-/// When leg `m` of a robot's plan starts, and how long it takes to where it leads (its
-/// wait, way and stops; not the task there).
-fn leg_span(s: &RobotSchedule, m: usize) -> Option<(f64, f64)> {
-    let mut of_leg = (s.segments.iter())
-        .filter(|g| g.leg == Some(m) && !matches!(g.activity, Activity::Work(_)));
-    let first = of_leg.next()?;
-    let end = of_leg.next_back().map_or(first.end, |g| g.end);
-    Some((first.start, end - first.start))
 }
 
 /// Robot `r`'s slack, in time order: each leg's wait, then its holds and its motions run
@@ -413,10 +380,18 @@ mod tests {
     }
 
     fn tightened(leg: impl Fn(&MoveStore) -> Leg) -> Tightened {
+        // Each kind of slack alone: no way given back for a wait.
+        let mut opts = SolveOptions::default();
+        opts.search.remedies.wait = false;
+        tightened_with(&opts, leg)
+    }
+
+    /// [`tightened`] under `opts`.
+    fn tightened_with(opts: &SolveOptions, leg: impl Fn(&MoveStore) -> Leg) -> Tightened {
         let cell = crate::cell::parse_cell(CELL, "test.json".as_ref())
             .unwrap()
             .cell;
-        let opts = SolveOptions::default();
+        let opts = opts.clone();
         let prepared = prepare(&cell, &opts, &()).unwrap();
         let mut search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
         let routes = vec![vec![0], vec![1]];
@@ -512,6 +487,43 @@ mod tests {
         );
     }
 
+    /// The answer's own shortening wins a tie: with X's task 20 s long, X sets the makespan,
+    /// and Y waiting 6 s before its way out (more than X's passing needs) ends before it.
+    /// Shortening Y's wait leaves the makespan as it is, and the shortened schedule is the
+    /// answer: a robot that does not set the makespan holds no longer than the others
+    /// allow either.
+    #[test]
+    fn the_answers_own_shortening_wins_a_tie() {
+        let text = CELL.replace(r#""duration": 1.0"#, r#""duration": 20.0"#);
+        let cell = crate::cell::parse_cell(&text, "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let opts = SolveOptions::default();
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let mut search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
+        let routes = vec![vec![0], vec![1]];
+        let root = search.add_root(&routes).unwrap().unwrap();
+        search.check_all(&[root], &());
+        let waits = Leg {
+            wait: 6.0,
+            ..Leg::DEFAULT
+        };
+        let legs = with_leg(&default_legs(2), 1, 0, waits);
+        let y = RobotSchedule::build(&cell, 1, &routes[1], &legs[1], &prepared.moves).unwrap();
+        let mut robots = search.nodes[root].robots.clone();
+        robots[1] = Arc::new(y);
+        assert!(robots[1].end < robots[0].end, "X ends last");
+        let yields = search.add(Node::by_hand(root, &routes, legs, robots));
+        search.check_all(&[yields], &());
+        assert_eq!(search.best, Some(yields));
+        search.tighten_all(&());
+        let answer = search.best.unwrap();
+        assert_ne!(answer, yields, "the shortened schedule is the answer");
+        let node = &search.nodes[answer];
+        assert_eq!(node.makespan, search.nodes[yields].makespan);
+        assert!(node.legs[1][0].wait < 6.0);
+    }
+
     /// Y making its way out 1.4 times slower is certified (3 times slower, it would meet X
     /// on its way back), but slower than X's passing needs:
     /// the answer runs it no faster than the fastest that clears, and little slower.
@@ -547,5 +559,39 @@ mod tests {
             "{} times slower, least {least}",
             s.after
         );
+    }
+
+    /// The same slowed way out of Y, where a wait may be taken: Y waits at home, then makes
+    /// its planned move at full speed, and ends sooner than running it the least slower
+    /// that clears. The leg's time is reported from before the wait to the arrival.
+    #[test]
+    fn a_slowed_way_gives_way_to_a_wait_and_the_planned_move() {
+        let slowed = |moves: &MoveStore| {
+            let m = moves.get(1, 0, 2).unwrap();
+            Leg {
+                wait: 0.0,
+                pieces: Some(
+                    vec![Piece::Go {
+                        motion: moves.timed(1, &m.primitives),
+                        scale: 1.4,
+                    }]
+                    .into(),
+                ),
+            }
+        };
+        let waits = tightened_with(&SolveOptions::default(), slowed);
+        let s = waits.shortened;
+        assert_eq!((s.robot, s.leg, s.kind), (1, 0, Shortening::Straight));
+        assert!(
+            waits.leg.pieces.is_none() && waits.leg.wait > 0.0,
+            "{:?}",
+            waits.leg
+        );
+        // Y ends as much sooner as its leg is shorter.
+        let gained = waits.makespans.0 - waits.makespans.1;
+        assert!((gained - (s.before - s.after)).abs() < 1e-9, "{s:?}");
+        assert!((waits.clear)(&waits.leg));
+        let sped_up = tightened(slowed);
+        assert!(waits.makespans.1 < sped_up.makespans.1 - 0.1);
     }
 }
