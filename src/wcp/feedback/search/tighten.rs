@@ -92,10 +92,9 @@ impl Search<'_> {
         // slack: a robot that goes sooner may leave room for the one that ends last.
         let mut changed = true;
         let mut passes = 0;
-        // Whether a changed way may take its planned move after a wait: only once nothing
-        // else shortens, since the wait takes room that other robots' shortening might
-        // have used.
-        // A way given back for a wait takes only a remedy the solve may take.
+        // Whether a changed way may take its planned move after a wait (only where the
+        // solve may wait): from the first pass when `early`, else once nothing else
+        // shortens.
         let may_wait = self.opts.search.remedies.wait;
         let mut waiting = early && may_wait;
         let deadline = self.prepared.deadline;
