@@ -46,8 +46,8 @@ impl Search<'_> {
                 let changed = with_leg(legs, r, m, planned(extra));
                 RobotSchedule::build(cell, r, route, &changed[r], moves).ok()
             };
-            let attempt = |extra: f64| -> Option<RobotSchedule> {
-                let s = build(extra)?;
+            // The plan `s` if it ends the robot no later and clears every other robot.
+            let cleared = |s: RobotSchedule| -> Option<RobotSchedule> {
                 if s.end > old.end {
                     return None;
                 }
@@ -57,12 +57,14 @@ impl Search<'_> {
                 });
                 clear.then_some(s)
             };
-            let (extra, s) = match attempt(0.0) {
+            let attempt = |extra: f64| cleared(build(extra)?);
+            let plain = build(0.0)?;
+            // What the planned move saves: the longest wait that still ends the robot sooner,
+            // less a share, so that the robot gains.
+            let saved = old.end - plain.end;
+            let (extra, s) = match cleared(plain) {
                 Some(s) => (0.0, s),
                 None if waiting => {
-                    // The longest wait that still ends the robot sooner: the time the planned
-                    // move saves, less a share, so that the robot gains.
-                    let saved = old.end - build(0.0)?.end;
                     if saved <= 0.0 {
                         return None;
                     }
