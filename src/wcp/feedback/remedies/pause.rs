@@ -105,12 +105,13 @@ pub(super) fn pause(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
         if ctx.cap < f64::INFINITY && ctx.rebuild(view, side.x, m, &make(0.0)?)?.end >= ctx.cap {
             return None;
         }
+        let stop = first.path.last().copied()?;
+        let (d, new, s) = least_clearing(&ctx, view, side, (m, t0), &horizons, make)?;
+        // Certified once it clears: a stop that clears nothing needs no certificate.
         let obstacles = ctx.moves.obstacles();
         for half in [&first, &second] {
             certify(ctx.cell, side.x, &half.samples, obstacles).ok()?;
         }
-        let stop = first.path.last().copied()?;
-        let (d, new, s) = least_clearing(&ctx, view, side, (m, t0), &horizons, make)?;
         bound.set(s.end);
         Some((s.end, (d, stop, new, s)))
     });

@@ -28,7 +28,7 @@ use crate::wcp::prepare::Progress;
 use crate::wcp::schedule::{route_nodes, RobotSchedule, Schedule};
 use rayon::prelude::*;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Fractions of a slack tried first, together: the least one that clears is kept.
 const FRACTIONS: [f64; 6] = [0.0, 0.25, 0.5, 0.75, 0.9, 0.97];
@@ -47,43 +47,102 @@ struct Slack {
     piece: Option<usize>,
 }
 
+/// A certified schedule's slack shortened, and the checker's verdict on it.
+struct Tightened {
+    legs: Legs,
+    robots: Vec<Arc<RobotSchedule>>,
+    /// What was shortened, in order.
+    shortened: Vec<Shortened>,
+    outcome: Outcome,
+    free: bool,
+    /// Time spent checking the result, and in all.
+    checking: Duration,
+    elapsed: Duration,
+}
+
 impl Search<'_> {
     /// Shortens the slack of every schedule that was the best when found: the answer is
     /// the shortest of them all, shortened or not (one found earlier may shorten more).
     pub(super) fn tighten_all(&mut self, progress: &dyn Progress) {
-        // The answer first: under a time limit, the one most likely to give the answer.
-        for (id, found_at) in self.incumbents.clone().into_iter().rev() {
-            if self.prepared.deadline.is_some_and(|d| Instant::now() >= d) {
-                break;
-            }
-            // Ways given back for a wait late, then early: each order wins on some cells.
-            for early in [false, true] {
-                let Some(child) = self.tighten(id, early) else {
-                    continue;
-                };
-                let best = self.best.expect("an incumbent is certified");
-                let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
-                progress.iteration(self.checked, m, None);
-                // Shortened slack brings robots home no later: the answer's own shortening
-                // wins a tie.
-                if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
-                    // Found when the schedule it shortens was.
-                    (self.best, self.best_at) = (Some(child), found_at);
-                    progress.certified(m);
-                }
+        // Ways given back for a wait late, then early: each order wins on some cells. Every
+        // shortening reads only its own schedule, so all are made at once and taken in
+        // order, the answer first (under a time limit, the one most likely to give it).
+        let jobs: Vec<(usize, usize, bool)> = (self.incumbents.iter().rev())
+            .flat_map(|&(id, found_at)| [false, true].map(|early| (id, found_at, early)))
+            .collect();
+        let deadline = self.prepared.deadline;
+        let clock = Instant::now();
+        let made: Vec<Option<Tightened>> = jobs
+            .par_iter()
+            .map(|&(id, _, early)| match deadline {
+                Some(d) if Instant::now() >= d => None,
+                _ => self.tighten(id, early),
+            })
+            .collect();
+        // The wall time, shared between the stages as the jobs spent theirs.
+        let spent = |f: fn(&Tightened) -> Duration| made.iter().flatten().map(f).sum::<Duration>();
+        let (checking, all) = (spent(|t| t.checking), spent(|t| t.elapsed));
+        let share = checking.as_secs_f64() / all.as_secs_f64().max(f64::MIN_POSITIVE);
+        let wall = clock.elapsed();
+        self.times.checking += wall.mul_f64(share);
+        self.times.scheduling += wall.mul_f64(1.0 - share);
+        for ((id, found_at, _), tightened) in jobs.into_iter().zip(made) {
+            let Some(child) = tightened.and_then(|t| self.add_tightened(id, t)) else {
+                continue;
+            };
+            let best = self.best.expect("an incumbent is certified");
+            let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
+            progress.iteration(self.checked, m, None);
+            // Shortened slack brings robots home no later: the answer's own shortening
+            // wins a tie.
+            if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
+                // Found when the schedule it shortens was.
+                (self.best, self.best_at) = (Some(child), found_at);
+                progress.certified(m);
             }
         }
     }
 
-    /// Shortens the slack of node `id`, a certified schedule: the shortened schedule, a
-    /// child of it checked as a changed node is, when it is certified. `early`: a changed
-    /// way may be given back for a wait from the first pass on (else only once nothing
-    /// else shortens).
-    fn tighten(&mut self, id: usize, early: bool) -> Option<usize> {
+    /// Node `id`'s schedule shortened as [`Search::tighten`] made it: a child of it, whose
+    /// id is given when it is certified.
+    fn add_tightened(&mut self, id: usize, t: Tightened) -> Option<usize> {
+        let node = &self.nodes[id];
+        let first = &t.shortened[0];
+        let remedy = Remedy::on(
+            first.robot,
+            first.leg,
+            first.nodes,
+            RemedyKind::Tighten {
+                shortened: t.shortened,
+            },
+        );
+        let child = Node {
+            routes: node.routes.clone(),
+            conflicts: node.conflicts.clone(),
+            legs: t.legs,
+            makespan: t.robots.iter().map(|s| s.end).fold(0.0, f64::max),
+            robots: t.robots,
+            parent: Some(id),
+            remedy: Some(remedy),
+            depth: node.depth + 1,
+            discrepancies: node.discrepancies,
+            deviated_at: node.deviated_at,
+            pending: None,
+            outcome: Some(t.outcome),
+            prepared: node.prepared.clone(),
+        };
+        let child = self.add(child);
+        t.free.then_some(child)
+    }
+
+    /// Shortens the slack of node `id`, a certified schedule, and checks the result as a
+    /// changed node is (its robots, then whole); `None` when nothing shortens. `early`: a
+    /// changed way may be given back for a wait from the first pass on (else only once
+    /// nothing else shortens).
+    fn tighten(&self, id: usize, early: bool) -> Option<Tightened> {
         let clock = Instant::now();
         let node = &self.nodes[id];
-        let (routes, mut legs, mut robots) =
-            (node.routes.clone(), node.legs.clone(), node.robots.clone());
+        let (routes, mut legs, mut robots) = (&node.routes, node.legs.clone(), node.robots.clone());
         let mut shortened: Vec<Shortened> = Vec::new();
         // The slack each entry of `shortened` shortened (none for a way straightened).
         let mut which: Vec<Option<(usize, Slack)>> = Vec::new();
@@ -170,46 +229,27 @@ impl Search<'_> {
                 (waiting, changed) = (true, true);
             }
         }
-        self.times.scheduling += clock.elapsed();
         if shortened.is_empty() {
             return None;
         }
-        let node = &self.nodes[id];
-        let makespan = robots.iter().map(|s| s.end).fold(0.0, f64::max);
-        let first = &shortened[0];
-        let child = self.add(Node {
-            routes,
-            conflicts: node.conflicts.clone(),
+        // Not counted among the search's schedules: like a remedy's own checks, it spends
+        // none of its budget.
+        let checking = Instant::now();
+        let schedule = Schedule::of(robots.clone());
+        let opts = &self.opts.check;
+        let mut outcome = Outcome::of(self.cell, &schedule, opts, false, &[]);
+        if outcome.status() == Status::Free {
+            outcome = Outcome::of(self.cell, &schedule, opts, true, &[]);
+        }
+        Some(Tightened {
+            free: outcome.status() == Status::Free,
             legs,
             robots,
-            makespan,
-            parent: Some(id),
-            remedy: Some(Remedy::on(
-                first.robot,
-                first.leg,
-                first.nodes,
-                RemedyKind::Tighten { shortened },
-            )),
-            depth: node.depth + 1,
-            discrepancies: node.discrepancies,
-            deviated_at: node.deviated_at,
-            pending: None,
-            outcome: None,
-            prepared: node.prepared.clone(),
-        });
-        // Checked as a changed node is (its robots, then whole), but not counted among the
-        // search's schedules: like a remedy's own checks, it spends none of its budget.
-        let clock = Instant::now();
-        let schedule = Schedule::of(self.nodes[child].robots.clone());
-        let opts = &self.opts.check;
-        let free = [false, true].into_iter().all(|whole| {
-            let outcome = Outcome::of(self.cell, &schedule, opts, whole, &[]);
-            let status = outcome.status();
-            self.nodes[child].outcome = Some(outcome);
-            status == Status::Free
-        });
-        self.times.checking += clock.elapsed();
-        free.then_some(child)
+            shortened,
+            outcome,
+            checking: checking.elapsed(),
+            elapsed: clock.elapsed(),
+        })
     }
 
     /// The first slack of robot `r` (in time order) that can be shortened, with its
