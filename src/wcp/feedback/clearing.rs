@@ -35,8 +35,11 @@ pub(super) fn clears(
     (t0, t1): (f64, f64),
     opts: &CheckOptions,
 ) -> bool {
-    // Most candidates fail, most of them where a sample instant already shows the contact.
-    !contact_at_a_sample(cell, (x, sx), (y, sy), (t0, t1))
+    // Most candidates fail, most of them where a sample instant already shows the contact:
+    // one of x's (from the sample before t0, where the checker's window starts), or one of
+    // y's within the window (where both robots are posed between samples of their own).
+    !contact_at_a_sample(cell, (x, sx), (y, sy), (t0, t1), f64::NEG_INFINITY)
+        && !contact_at_a_sample(cell, (y, sy), (x, sx), (t0, t1), t0)
         && checked_clear(cell, (x, sx), (y, sy), (t0, t1), opts)
 }
 
@@ -85,14 +88,15 @@ fn checked_clear(
 }
 
 /// Whether rigid robots `x` and `y` come closer than [`SURE_CONTACT`] δ at an instant of
-/// `x`'s samples over `[t0, t1]` (from the sample before `t0`), posed as the checker poses
-/// them: the checker would report a contact at that instant or before it. Arms are left to
-/// the checker.
+/// `x`'s samples over `[t0, t1]` (from the sample before `t0`, none before `from`), posed
+/// as the checker poses them: the checker evaluates every sample instant of both robots, so
+/// it would report a contact at that instant or before it. Arms are left to the checker.
 fn contact_at_a_sample(
     cell: &Cell,
     (x, sx): (usize, &RobotSchedule),
     (y, sy): (usize, &RobotSchedule),
     (t0, t1): (f64, f64),
+    from: f64,
 ) -> bool {
     let (Some(rx), Some(ry)) = (cell.robots[x].as_rigid(), cell.robots[y].as_rigid()) else {
         return false;
@@ -102,6 +106,7 @@ fn contact_at_a_sample(
     let tol = WalkTolerances::default();
     let (first, last) = window(&sx.samples, t0, t1);
     (sx.samples[first..=last].iter())
+        .skip_while(|s| s.t < from)
         .take_while(|s| s.t <= t1)
         .any(|s| {
             // In a frame centred on x, as the checker works.
@@ -243,11 +248,13 @@ mod tests {
 
     /// The sample instants say "contact" only where the checker finds one: through, just
     /// within and just outside δ, and clear. Closer than half of δ at a sample, they say it
-    /// without the checker.
+    /// without the checker, at the moving robot's instants whichever robot [`clears`] asks
+    /// about (the standing robot's two samples show no contact).
     #[test]
     fn a_contact_at_a_sample_is_one_the_checker_finds() {
         let opts = CheckOptions::default();
         let window = (0.0, 6.0);
+        let all = f64::NEG_INFINITY;
         for (off, sure, clear) in [
             (0.3, true, false),
             (0.7 + 0.004, true, false),
@@ -256,8 +263,16 @@ mod tests {
             (1.5, false, true),
         ] {
             let (cell, x, y) = passing(off);
-            let got = contact_at_a_sample(&cell, (0, &x), (1, &y), window);
+            let got = contact_at_a_sample(&cell, (0, &x), (1, &y), window, all);
             assert_eq!(got, sure, "{off}");
+            assert!(!contact_at_a_sample(&cell, (1, &y), (0, &x), window, all));
+            // X passes Y at t = 3: no instant from 4.5 on shows the contact.
+            assert!(!contact_at_a_sample(&cell, (0, &x), (1, &y), window, 4.5));
+            assert_eq!(
+                clears(&cell, (1, &y), (0, &x), window, &opts),
+                clear,
+                "{off}"
+            );
             assert_eq!(
                 checked_clear(&cell, (0, &x), (1, &y), window, &opts),
                 clear,
@@ -271,7 +286,7 @@ mod tests {
             // X comes within δ of Y from t = 2.29 on, at the latest, after the window
             // (0, 2.2), whose last sample (2.5) is past its end: not a contact of the window.
             let early = (0.0, 2.2);
-            assert!(!contact_at_a_sample(&cell, (0, &x), (1, &y), early));
+            assert!(!contact_at_a_sample(&cell, (0, &x), (1, &y), early, all));
             assert!(clears(&cell, (0, &x), (1, &y), early, &opts));
         }
     }
