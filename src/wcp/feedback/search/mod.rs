@@ -52,6 +52,7 @@ mod order;
 mod pending;
 mod queue;
 mod roots;
+mod shorten;
 mod straighten;
 mod tighten;
 mod verdict;

@@ -10,7 +10,7 @@
 //! until none shortens: a robot's first leg in time order whose changed way can give way to
 //! its planned move again does so (`straighten.rs`); else its first slack in time order
 //! that can be shortened is cut to the least of a few fractions of it, then bisected, after
-//! which the checker proves that robot clear of every other from the leg on. A way may
+//! which the checker proves that robot clear of every other from the leg on (`shorten.rs`). A way may
 //! also be given back for a longer wait at the leg's start; such a wait holds room that the
 //! others' shortening might have used, or leaves them room they need, so each schedule is
 //! shortened twice, those waits tried only once nothing else shortens and from the start,
@@ -20,32 +20,20 @@
 //! rests, and how fast it runs its path, change), so the fixtures need no new check (the
 //! result is checked whole anyway).
 
+use super::shorten::{kind, with_excess, Slack};
 use super::{Node, Outcome, Search, Status};
-use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened, Shortening};
-use crate::wcp::legs::{with_leg, HoldReason, Leg, Legs, Piece};
+use crate::wcp::legs::{with_leg, Legs};
 use crate::wcp::prepare::Progress;
 use crate::wcp::schedule::{route_nodes, RobotSchedule, Schedule};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// Fractions of a slack tried first, together: the least one that clears is kept.
-const FRACTIONS: [f64; 6] = [0.0, 0.25, 0.5, 0.75, 0.9, 0.97];
-/// Bisections between the fraction kept and the one below it.
-const BISECTIONS: usize = 3;
 /// Passes over the robots at most: each shortens some slack, or is the last.
 const MAX_PASSES: usize = 16;
 /// Shortenings at most, in all: each costs a few pair checks of one robot.
 const MAX_STEPS: usize = 256;
-
-/// Slack in a robot's legs: the wait at the start of leg `leg`, or its piece `piece` (a
-/// hold, or a motion run slower than planned).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Slack {
-    leg: usize,
-    piece: Option<usize>,
-}
 
 /// A certified schedule's slack shortened, and the checker's verdict on it.
 struct Tightened {
@@ -251,145 +239,15 @@ impl Search<'_> {
             elapsed: clock.elapsed(),
         })
     }
-
-    /// The first slack of robot `r` (in time order) that can be shortened, with its
-    /// [`excess`] before and after and the robot's new plan.
-    fn shorten(
-        &self,
-        id: usize,
-        r: usize,
-        route: &[usize],
-        legs: &Legs,
-        robots: &[Arc<RobotSchedule>],
-    ) -> Option<(Slack, f64, f64, RobotSchedule)> {
-        let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
-        let opts = &self.opts.check;
-        for slack in slacks(legs, r) {
-            let before = excess(legs, r, slack);
-            // When the leg starts: its first segment (its wait, or its first piece).
-            let Some(t0) = robots[r]
-                .segments
-                .iter()
-                .find(|g| g.leg == Some(slack.leg))
-                .map(|g| g.start)
-            else {
-                continue;
-            };
-            let attempt = |d: f64| -> Option<RobotSchedule> {
-                let changed = with_leg(legs, r, slack.leg, with_excess(legs, r, slack, d));
-                let s = RobotSchedule::build(cell, r, route, &changed[r], moves).ok()?;
-                let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
-                    let t1 = s.end.max(robots[y].end);
-                    clears(cell, (r, &s), (y, &robots[y]), (t0, t1), opts)
-                });
-                clear.then_some(s)
-            };
-            let tries: Vec<Option<RobotSchedule>> =
-                FRACTIONS.par_iter().map(|f| attempt(f * before)).collect();
-            let Some(k) = tries.iter().position(Option::is_some) else {
-                continue;
-            };
-            let Some(s) = tries.into_iter().nth(k).flatten() else {
-                continue;
-            };
-            let mut best = (FRACTIONS[k] * before, s);
-            let mut below = match k {
-                0 => None,
-                _ => Some(FRACTIONS[k - 1] * before),
-            };
-            for _ in 0..BISECTIONS {
-                let Some(lo) = below else { break };
-                let mid = 0.5 * (lo + best.0);
-                match attempt(mid) {
-                    Some(s) => best = (mid, s),
-                    None => below = Some(mid),
-                }
-            }
-            return Some((slack, before, best.0, best.1));
-        }
-        None
-    }
-}
-
-/// Robot `r`'s slack, in time order: each leg's wait, then its holds and its motions run
-/// slower than planned.
-fn slacks(legs: &Legs, r: usize) -> Vec<Slack> {
-    let mut out = Vec::new();
-    for (m, leg) in legs[r].iter().enumerate() {
-        if leg.wait > 0.0 {
-            out.push(Slack {
-                leg: m,
-                piece: None,
-            });
-        }
-        for (j, p) in leg.pieces.iter().flat_map(|p| p.iter()).enumerate() {
-            let slack = match p {
-                Piece::Hold { duration, .. } => *duration > 0.0,
-                Piece::Go { scale, .. } => *scale > 1.0,
-            };
-            if slack {
-                out.push(Slack {
-                    leg: m,
-                    piece: Some(j),
-                });
-            }
-        }
-    }
-    out
-}
-
-/// What the slack is.
-fn kind(legs: &Legs, r: usize, slack: Slack) -> Shortening {
-    let Some(j) = slack.piece else {
-        return Shortening::Wait;
-    };
-    match legs[r][slack.leg].pieces.as_ref().map(|p| &p[j]) {
-        Some(Piece::Hold {
-            reason: HoldReason::Pause,
-            ..
-        }) => Shortening::Pause,
-        Some(Piece::Hold {
-            reason: HoldReason::Park,
-            ..
-        }) => Shortening::Park,
-        Some(Piece::Go { .. }) | None => Shortening::Slow,
-    }
-}
-
-/// How much slack: a wait's or a hold's seconds; a slowed motion's stretch beyond 1.
-fn excess(legs: &Legs, r: usize, slack: Slack) -> f64 {
-    let leg = &legs[r][slack.leg];
-    match (slack.piece, leg.pieces.as_deref()) {
-        (None, _) | (Some(_), None) => leg.wait,
-        (Some(j), Some(pieces)) => match &pieces[j] {
-            Piece::Hold { duration, .. } => *duration,
-            Piece::Go { scale, .. } => scale - 1.0,
-        },
-    }
-}
-
-/// Robot `r`'s leg with `slack` cut to `e` (an [`excess`]).
-fn with_excess(legs: &Legs, r: usize, slack: Slack, e: f64) -> Leg {
-    let mut leg = legs[r][slack.leg].clone();
-    match slack.piece {
-        None => leg.wait = e,
-        Some(j) => {
-            let mut pieces = leg.pieces.as_deref().unwrap_or_default().to_vec();
-            match &mut pieces[j] {
-                Piece::Hold { duration, .. } => *duration = e,
-                Piece::Go { scale, .. } => *scale = 1.0 + e,
-            }
-            leg.pieces = Some(pieces.into());
-        }
-    }
-    leg
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::planning::PlannedMove;
+    use crate::wcp::feedback::clearing::clears;
     use crate::wcp::legs::default_legs;
+    use crate::wcp::legs::{Leg, Piece};
     use crate::wcp::moves::MoveStore;
     use crate::wcp::options::SolveOptions;
     use crate::wcp::prepare::{prepare, StageTimes};
@@ -411,14 +269,14 @@ mod tests {
     /// What shortening makes of Y's first leg `leg` (certified, Y ending last): the one
     /// entry shortened, the makespan before and after, Y's leg after, and whether the
     /// checker proves Y with its first leg `leg` clear of X.
-    struct Tightened {
+    struct YShortened {
         shortened: Shortened,
         makespans: (f64, f64),
         leg: Leg,
         clear: Box<dyn Fn(&Leg) -> bool>,
     }
 
-    fn tightened(leg: impl Fn(&MoveStore) -> Leg) -> Tightened {
+    fn tightened(leg: impl Fn(&MoveStore) -> Leg) -> YShortened {
         // Each kind of slack alone: no way given back for a wait.
         let mut opts = SolveOptions::default();
         opts.search.remedies.wait = false;
@@ -426,7 +284,7 @@ mod tests {
     }
 
     /// [`tightened`] under `opts`.
-    fn tightened_with(opts: &SolveOptions, leg: impl Fn(&MoveStore) -> Leg) -> Tightened {
+    fn tightened_with(opts: &SolveOptions, leg: impl Fn(&MoveStore) -> Leg) -> YShortened {
         let cell = crate::cell::parse_cell(CELL, "test.json".as_ref())
             .unwrap()
             .cell;
@@ -465,7 +323,7 @@ mod tests {
             let y = RobotSchedule::build(&cell, 1, &[1], &legs[1], &prepared.moves).unwrap();
             clears(&cell, (1, &y), (0, &x), (0.0, 60.0), &opts.check)
         });
-        Tightened {
+        YShortened {
             shortened,
             makespans: (makespan, after),
             leg,
