@@ -47,6 +47,7 @@
 
 mod answer;
 mod budget;
+mod draft;
 mod idle;
 mod order;
 mod pending;

@@ -2,13 +2,12 @@
 //! order): its first wait, hold or slowed motion in time order that can be cut is cut to
 //! the least of [`FRACTIONS`] of it that clears, then bisected.
 
+use super::draft::Draft;
 use super::Search;
-use crate::wcp::feedback::clearing::clears;
 use crate::wcp::feedback::outcome::Shortening;
-use crate::wcp::legs::{with_leg, HoldReason, Leg, Legs, Piece};
+use crate::wcp::legs::{HoldReason, Leg, Legs, Piece};
 use crate::wcp::schedule::RobotSchedule;
 use rayon::prelude::*;
-use std::sync::Arc;
 
 /// Fractions of a slack tried first, together: the least one that clears is kept.
 const FRACTIONS: [f64; 6] = [0.0, 0.25, 0.5, 0.75, 0.9, 0.97];
@@ -28,14 +27,10 @@ impl Search<'_> {
     /// [`excess`] before and after and the robot's new plan.
     pub(super) fn shorten(
         &self,
-        id: usize,
+        draft: &Draft,
         r: usize,
-        route: &[usize],
-        legs: &Legs,
-        robots: &[Arc<RobotSchedule>],
     ) -> Option<(Slack, f64, f64, RobotSchedule)> {
-        let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
-        let opts = &self.opts.check;
+        let (legs, robots) = (draft.legs, draft.robots);
         for slack in slacks(legs, r) {
             let before = excess(legs, r, slack);
             // When the leg starts: its first segment (its wait, or its first piece).
@@ -48,13 +43,8 @@ impl Search<'_> {
                 continue;
             };
             let attempt = |d: f64| -> Option<RobotSchedule> {
-                let changed = with_leg(legs, r, slack.leg, with_excess(legs, r, slack, d));
-                let s = RobotSchedule::build(cell, r, route, &changed[r], moves).ok()?;
-                let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
-                    let t1 = s.end.max(robots[y].end);
-                    clears(cell, (r, &s), (y, &robots[y]), (t0, t1), opts)
-                });
-                clear.then_some(s)
+                let s = self.rebuilt(draft, r, slack.leg, with_excess(legs, r, slack, d))?;
+                self.clears_all(draft, r, &s, t0).then_some(s)
             };
             let tries: Vec<Option<RobotSchedule>> =
                 FRACTIONS.par_iter().map(|f| attempt(f * before)).collect();

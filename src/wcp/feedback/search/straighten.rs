@@ -4,11 +4,10 @@
 //! ends the robot no later, or, `waiting`, after a longer wait at the leg's start that
 //! still ends it sooner (`tighten.rs` decides when).
 
+use super::draft::Draft;
 use super::Search;
-use crate::wcp::feedback::clearing::clears;
-use crate::wcp::legs::{with_leg, Leg, Legs};
+use crate::wcp::legs::Leg;
 use crate::wcp::schedule::{Activity, RobotSchedule};
-use std::sync::Arc;
 
 /// Waits tried before a changed way's planned move, in shares of the time the planned move
 /// saves: the least that clears is kept, then bisected [`BISECTIONS`] times.
@@ -25,15 +24,11 @@ impl Search<'_> {
     /// time before and after, the new leg and the robot's new plan.
     pub(super) fn straighten(
         &self,
-        id: usize,
+        draft: &Draft,
         r: usize,
-        route: &[usize],
-        legs: &Legs,
-        robots: &[Arc<RobotSchedule>],
         waiting: bool,
     ) -> Option<(usize, f64, f64, Leg, RobotSchedule)> {
-        let (cell, moves) = (self.cell, &self.prepared_of(id).moves);
-        let opts = &self.opts.check;
+        let (legs, robots) = (draft.legs, draft.robots);
         let old = &robots[r];
         legs[r].iter().enumerate().find_map(|(m, leg)| {
             leg.pieces.as_ref()?;
@@ -42,20 +37,10 @@ impl Search<'_> {
                 pieces: None,
                 wait: leg.wait + extra,
             };
-            let build = |extra: f64| {
-                let changed = with_leg(legs, r, m, planned(extra));
-                RobotSchedule::build(cell, r, route, &changed[r], moves).ok()
-            };
+            let build = |extra: f64| self.rebuilt(draft, r, m, planned(extra));
             // The plan `s` if it ends the robot no later and clears every other robot.
             let cleared = |s: RobotSchedule| -> Option<RobotSchedule> {
-                if s.end > old.end {
-                    return None;
-                }
-                let clear = (0..robots.len()).filter(|&y| y != r).all(|y| {
-                    let t1 = s.end.max(robots[y].end);
-                    clears(cell, (r, &s), (y, &robots[y]), (t0, t1), opts)
-                });
-                clear.then_some(s)
+                (s.end <= old.end && self.clears_all(draft, r, &s, t0)).then_some(s)
             };
             let attempt = |extra: f64| cleared(build(extra)?);
             let plain = build(0.0)?;

@@ -20,6 +20,7 @@
 //! rests, and how fast it runs its path, change), so the fixtures need no new check (the
 //! result is checked whole anyway).
 
+use super::draft::Draft;
 use super::shorten::{kind, with_excess, Slack};
 use super::{Node, Outcome, Search, Status};
 use crate::wcp::feedback::outcome::{Remedy, RemedyKind, Shortened, Shortening};
@@ -155,9 +156,13 @@ impl Search<'_> {
             let mut order: Vec<usize> = (0..robots.len()).collect();
             order.sort_by(|&a, &b| robots[b].end.total_cmp(&robots[a].end).then(a.cmp(&b)));
             for r in order {
-                if let Some((m, before, after, planned, s)) =
-                    self.straighten(id, r, &routes[r], &legs, &robots, waiting)
-                {
+                let draft = Draft {
+                    id,
+                    routes,
+                    legs: &legs,
+                    robots: &robots,
+                };
+                if let Some((m, before, after, planned, s)) = self.straighten(&draft, r, waiting) {
                     let nodes = route_nodes(&routes[r]);
                     which.push(None);
                     shortened.push(Shortened {
@@ -174,9 +179,7 @@ impl Search<'_> {
                     changed = true;
                     continue;
                 }
-                let Some((slack, before, after, s)) =
-                    self.shorten(id, r, &routes[r], &legs, &robots)
-                else {
+                let Some((slack, before, after, s)) = self.shorten(&draft, r) else {
                     continue;
                 };
                 let kind = kind(&legs, r, slack);
