@@ -141,6 +141,12 @@ pub struct SearchOptions {
     /// docs/benchmarks.md. 0, the default: none, since they share the budget with the
     /// collision-blind plan. A re-sequencing: none without [`Remedies::resequence`].
     pub idle_roots: usize,
+    /// Whether shortening the answer may let the robot that ends last through: a wait or
+    /// hold of it that one other robot alone keeps it from cutting is cut, and that robot
+    /// waits longer instead, where it still ends sooner (`search/give_way.rs`; only where
+    /// [`Remedies::wait`] allows waits). On by default; off to see the other shortenings
+    /// alone.
+    pub give_way: bool,
 }
 
 impl Default for SearchOptions {
@@ -153,6 +159,7 @@ impl Default for SearchOptions {
             second_pass_share: 0.3,
             remember: true,
             idle_roots: 0,
+            give_way: true,
         }
     }
 }

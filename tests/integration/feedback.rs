@@ -256,10 +256,11 @@ fn a_detour_goes_round_a_robot_that_is_working() {
     assert_eq!(detours.len(), 2, "{:?}", remedies(&solved));
     assert!(solved.schedule.makespan <= solved.blind_makespan * 1.001);
     // Without going round (nor pulling in beside its way, from where it may go round too),
-    // R2 must start its weld after R1 has passed: some 15 s later.
+    // one waits for the other: R2 starts its weld after R1 has passed (15 s later), or,
+    // let through, R1 waits at its far task until the weld is done (7 s later).
     let without = solve_with(&cell, &none_of(&["detour", "pass-aside"]));
     assert!(without.collision_free);
-    assert!(without.schedule.makespan > solved.schedule.makespan + 10.0);
+    assert!(without.schedule.makespan > solved.schedule.makespan + 5.0);
 }
 
 #[test]

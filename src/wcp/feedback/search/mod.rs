@@ -48,6 +48,7 @@
 mod answer;
 mod budget;
 mod draft;
+mod give_way;
 mod idle;
 mod order;
 mod pending;

@@ -14,7 +14,8 @@
 //! also be given back for a longer wait at the leg's start; such a wait holds room that the
 //! others' shortening might have used, or leaves them room they need, so each schedule is
 //! shortened twice, those waits tried only once nothing else shortens and from the start,
-//! and the shorter kept. The answer is the shortest of all of them, shortened or not: one
+//! and the shorter kept. Once nothing shortens, the robot that ends last may be let through
+//! by another that waits longer instead (`give_way.rs`), and the passes go on. The answer is the shortest of all of them, shortened or not: one
 //! found earlier may shorten further. A planned move is certified clear of the fixtures
 //! when planned, and the other changes keep paths (only when a robot rests where it already
 //! rests, and how fast it runs its path, change), so the fixtures need no new check (the
@@ -35,6 +36,54 @@ use std::time::{Duration, Instant};
 const MAX_PASSES: usize = 16;
 /// Shortenings at most, in all: each costs a few pair checks of one robot.
 const MAX_STEPS: usize = 256;
+
+/// What a shortening did, in order, for the report.
+struct Notes<'n> {
+    routes: &'n [Vec<usize>],
+    shortened: Vec<Shortened>,
+    /// The slack each entry of `shortened` changed (none for a way straightened).
+    which: Vec<Option<(usize, Slack)>>,
+}
+
+impl Notes<'_> {
+    /// Robot `r`'s leg `m` changed from `before` to `after` (`kind`, of slack `slack`):
+    /// slack changed again is one entry, from its first length to its last.
+    fn note(
+        &mut self,
+        r: usize,
+        m: usize,
+        slack: Option<Slack>,
+        kind: Shortening,
+        (before, after): (f64, f64),
+    ) {
+        let key = slack.map(|s| (r, s));
+        if let Some(k) = key.and_then(|key| self.which.iter().position(|&w| w == Some(key))) {
+            self.shortened[k].after = after;
+            return;
+        }
+        let nodes = route_nodes(&self.routes[r]);
+        self.which.push(key);
+        self.shortened.push(Shortened {
+            robot: r,
+            leg: m,
+            nodes: (nodes[m], nodes[(m + 1).min(nodes.len() - 1)]),
+            kind,
+            before,
+            after,
+        });
+    }
+
+    /// Robot `r`'s `slack` in `legs` cut from `before` to `after` (an excess), reported as
+    /// the robot does it: a slowed motion by its factor.
+    fn note_slack(&mut self, legs: &Legs, r: usize, slack: Slack, (before, after): (f64, f64)) {
+        let kind = kind(legs, r, slack);
+        let lengths = match kind {
+            Shortening::Slow => (1.0 + before, 1.0 + after),
+            _ => (before, after),
+        };
+        self.note(r, slack.leg, Some(slack), kind, lengths);
+    }
+}
 
 /// A certified schedule's slack shortened, and the checker's verdict on it.
 struct Tightened {
@@ -132,9 +181,11 @@ impl Search<'_> {
         let clock = Instant::now();
         let node = &self.nodes[id];
         let (routes, mut legs, mut robots) = (&node.routes, node.legs.clone(), node.robots.clone());
-        let mut shortened: Vec<Shortened> = Vec::new();
-        // The slack each entry of `shortened` shortened (none for a way straightened).
-        let mut which: Vec<Option<(usize, Slack)>> = Vec::new();
+        let mut notes = Notes {
+            routes,
+            shortened: Vec::new(),
+            which: Vec::new(),
+        };
         let mut steps = 0;
         // Passes over the robots, the one that ends last first, until none can shorten its
         // slack: a robot that goes sooner may leave room for the one that ends last.
@@ -163,16 +214,7 @@ impl Search<'_> {
                     robots: &robots,
                 };
                 if let Some((m, before, after, planned, s)) = self.straighten(&draft, r, waiting) {
-                    let nodes = route_nodes(&routes[r]);
-                    which.push(None);
-                    shortened.push(Shortened {
-                        robot: r,
-                        leg: m,
-                        nodes: (nodes[m], nodes[(m + 1).min(nodes.len() - 1)]),
-                        kind: Shortening::Straight,
-                        before,
-                        after,
-                    });
+                    notes.note(r, m, None, Shortening::Straight, (before, after));
                     legs = with_leg(&legs, r, m, planned);
                     robots[r] = Arc::new(s);
                     steps += 1;
@@ -182,44 +224,43 @@ impl Search<'_> {
                 let Some((slack, before, after, s)) = self.shorten(&draft, r) else {
                     continue;
                 };
-                let kind = kind(&legs, r, slack);
-                let leg = with_excess(&legs, r, slack, after);
-                // Reported as the robot does it: a slowed motion by its factor.
-                let (before, after) = match kind {
-                    Shortening::Slow => (1.0 + before, 1.0 + after),
-                    _ => (before, after),
-                };
-                // Slack shortened again is one entry, from its first length to its last.
-                match which.iter().position(|&w| w == Some((r, slack))) {
-                    Some(k) => shortened[k].after = after,
-                    None => {
-                        let nodes = route_nodes(&routes[r]);
-                        which.push(Some((r, slack)));
-                        shortened.push(Shortened {
-                            robot: r,
-                            leg: slack.leg,
-                            nodes: (
-                                nodes[slack.leg],
-                                nodes[(slack.leg + 1).min(nodes.len() - 1)],
-                            ),
-                            kind,
-                            before,
-                            after,
-                        });
-                    }
-                }
+                notes.note_slack(&legs, r, slack, (before, after));
                 steps += 1;
-                legs = with_leg(&legs, r, slack.leg, leg);
+                legs = with_leg(&legs, r, slack.leg, with_excess(&legs, r, slack, after));
                 robots[r] = Arc::new(s);
                 changed = true;
                 if steps >= MAX_STEPS {
                     break;
                 }
             }
+            let draft = Draft {
+                id,
+                routes,
+                legs: &legs,
+                robots: &robots,
+            };
             if !changed && !waiting && may_wait {
                 (waiting, changed) = (true, true);
+            } else if !changed && may_wait && self.opts.search.give_way {
+                // Nothing else shortens: the robot that ends last, let through.
+                if let Some(g) = self.give_way(&draft) {
+                    notes.note_slack(&legs, g.r, g.slack, g.cut);
+                    let wait = Slack {
+                        leg: g.m,
+                        piece: None,
+                    };
+                    notes.note(g.y, g.m, Some(wait), Shortening::Wait, g.wait);
+                    let cut = with_excess(&legs, g.r, g.slack, g.cut.1);
+                    legs = with_leg(&legs, g.r, g.slack.leg, cut);
+                    legs = with_leg(&legs, g.y, g.m, g.y_leg);
+                    robots[g.r] = Arc::new(g.r_plan);
+                    robots[g.y] = Arc::new(g.y_plan);
+                    steps += 1;
+                    changed = true;
+                }
             }
         }
+        let shortened = notes.shortened;
         if shortened.is_empty() {
             return None;
         }
@@ -269,21 +310,24 @@ mod tests {
                   {"name": "y", "at": [0, 5, 0], "duration": 9.0, "robots": ["Y"]}]
     }"#;
 
-    /// What shortening makes of Y's first leg `leg` (certified, Y ending last): the one
-    /// entry shortened, the makespan before and after, Y's leg after, and whether the
-    /// checker proves Y with its first leg `leg` clear of X.
+    /// What shortening makes of Y's first leg `leg` (certified, Y ending last): the first
+    /// entry shortened and all of them, the makespan before and after, Y's leg after, and
+    /// whether the checker proves Y with its first leg `leg` clear of X as X was.
     struct YShortened {
         shortened: Shortened,
+        all: Vec<Shortened>,
         makespans: (f64, f64),
         leg: Leg,
         clear: Box<dyn Fn(&Leg) -> bool>,
     }
 
     fn tightened(leg: impl Fn(&MoveStore) -> Leg) -> YShortened {
-        // Each kind of slack alone: no way given back for a wait.
+        // Each kind of slack alone: no way given back for a wait, no robot let through.
         let mut opts = SolveOptions::default();
         opts.search.remedies.wait = false;
-        tightened_with(&opts, leg)
+        let t = tightened_with(&opts, leg);
+        assert_eq!(t.all.len(), 1, "{:?}", t.all);
+        t
     }
 
     /// [`tightened`] under `opts`.
@@ -317,9 +361,11 @@ mod tests {
         let Some(RemedyKind::Tighten { shortened }) = node.remedy.as_ref().map(|r| &r.kind) else {
             panic!("{:?}", node.remedy);
         };
-        assert_eq!(shortened.len(), 1);
-        let (after, leg) = (node.makespan, node.legs[1][0].clone());
-        let shortened = shortened[0];
+        let (after, leg) = (
+            node.makespan,
+            crate::wcp::legs::leg(&node.legs, 1, 0).clone(),
+        );
+        let all = shortened.clone();
         let x = robots[0].clone();
         let clear = Box::new(move |leg: &Leg| {
             let legs = with_leg(&default_legs(2), 1, 0, leg.clone());
@@ -327,7 +373,8 @@ mod tests {
             clears(&cell, (1, &y), (0, &x), (0.0, 60.0), &opts.check)
         });
         YShortened {
-            shortened,
+            shortened: all[0],
+            all,
             makespans: (makespan, after),
             leg,
             clear,
@@ -479,7 +526,11 @@ mod tests {
                 ),
             }
         };
-        let waits = tightened_with(&SolveOptions::default(), slowed);
+        // No robot let through: X would wait for Y instead (the test below).
+        let mut opts = SolveOptions::default();
+        opts.search.give_way = false;
+        let waits = tightened_with(&opts, slowed);
+        assert_eq!(waits.all.len(), 1, "{:?}", waits.all);
         let s = waits.shortened;
         assert_eq!((s.robot, s.leg, s.kind), (1, 0, Shortening::Straight));
         assert!(
@@ -493,5 +544,30 @@ mod tests {
         assert!((waits.clear)(&waits.leg));
         let sped_up = tightened(slowed);
         assert!(waits.makespans.1 < sped_up.makespans.1 - 0.1);
+    }
+
+    /// Y waits at home until X has crossed; X, with a short task, has room. Cutting Y's
+    /// wait to what clears X is the most the other shortenings do; letting Y through, X
+    /// waits for it instead, and the cell ends sooner.
+    #[test]
+    fn the_robot_that_ends_last_is_let_through_by_one_with_room() {
+        let waited = |_: &MoveStore| Leg {
+            wait: 4.0,
+            pieces: None,
+        };
+        let mut alone = SolveOptions::default();
+        alone.search.give_way = false;
+        let cut = tightened_with(&alone, waited);
+        assert_eq!(cut.all.len(), 1, "{:?}", cut.all);
+        assert!(cut.leg.wait > 1.0, "{:?}", cut.leg);
+        let through = tightened_with(&SolveOptions::default(), waited);
+        assert!(through.leg.wait < cut.leg.wait - 1.0, "{:?}", through.leg);
+        assert!(through.makespans.1 < cut.makespans.1 - 1.0);
+        // X waits longer at home: listed with its wait before and after.
+        let x_waits = (through.all.iter())
+            .find(|e| e.robot == 0)
+            .expect("X waits");
+        assert_eq!((x_waits.leg, x_waits.kind), (0, Shortening::Wait));
+        assert!(x_waits.after > x_waits.before, "{x_waits:?}");
     }
 }

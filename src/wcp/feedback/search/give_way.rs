@@ -1,0 +1,163 @@
+//! The robot that ends last, let through: a wait or hold of it that one other robot alone
+//! keeps it from cutting is cut, and that robot waits longer at the start of one of its
+//! legs instead, where it still ends sooner than the makespan (`tighten.rs` tries it once
+//! nothing else shortens).
+
+use super::draft::Draft;
+use super::shorten::{excess, slacks, with_excess, Slack};
+use super::Search;
+use crate::wcp::feedback::clearing::clears;
+use crate::wcp::legs::{leg, Leg};
+use crate::wcp::schedule::RobotSchedule;
+
+/// Shares of its slack the last robot's wait or hold is cut to, tried in order.
+const CUTS: [f64; 3] = [0.0, 0.5, 0.75];
+/// Shares of its room (up to the makespan) tried as the other robot's longer wait, least
+/// first; then bisected [`BISECTIONS`] times.
+const WAITS: [f64; 4] = [0.25, 0.5, 0.75, 0.97];
+/// Bisections between the wait kept and the share below it.
+const BISECTIONS: usize = 3;
+
+/// Robot `r` let through by robot `y`: `r`'s slack cut, `y`'s leg `m` waited longer.
+pub(super) struct GiveWay {
+    pub(super) r: usize,
+    pub(super) slack: Slack,
+    /// `r`'s slack before and after.
+    pub(super) cut: (f64, f64),
+    pub(super) r_plan: RobotSchedule,
+    pub(super) y: usize,
+    pub(super) m: usize,
+    /// `y`'s wait at the start of leg `m`, before and after.
+    pub(super) wait: (f64, f64),
+    pub(super) y_leg: Leg,
+    pub(super) y_plan: RobotSchedule,
+}
+
+impl Search<'_> {
+    /// The robot that ends last let through by another (see the module documentation).
+    pub(super) fn give_way(&self, draft: &Draft) -> Option<GiveWay> {
+        let robots = draft.robots;
+        let makespan = robots.iter().map(|s| s.end).fold(0.0, f64::max);
+        let r = (0..robots.len()).find(|&r| robots[r].end == makespan)?;
+        let (cell, opts) = (self.cell, &self.opts.check);
+        for slack in slacks(draft.legs, r) {
+            let before = excess(draft.legs, r, slack);
+            let t0 = robots[r]
+                .segments
+                .iter()
+                .find(|g| g.leg == Some(slack.leg))
+                .map(|g| g.start)?;
+            for cut in CUTS.map(|c| c * before) {
+                let leg = with_excess(draft.legs, r, slack, cut);
+                let Some(s) = self.rebuilt(draft, r, slack.leg, leg) else {
+                    continue;
+                };
+                if s.end >= robots[r].end {
+                    continue;
+                }
+                let mut blockers = (0..robots.len()).filter(|&y| {
+                    y != r
+                        && !clears(
+                            cell,
+                            (r, &s),
+                            (y, &robots[y]),
+                            (t0, s.end.max(robots[y].end)),
+                            opts,
+                        )
+                });
+                // Only where one robot alone is in the way: it alone must wait.
+                let (Some(y), None) = (blockers.next(), blockers.next()) else {
+                    continue;
+                };
+                if let Some((m, wait, y_leg, y_plan)) = self.waited(draft, (r, &s, t0), y, makespan)
+                {
+                    return Some(GiveWay {
+                        r,
+                        slack,
+                        cut: (before, cut),
+                        r_plan: s,
+                        y,
+                        m,
+                        wait,
+                        y_leg,
+                        y_plan,
+                    });
+                }
+            }
+        }
+        None
+    }
+
+    /// The least longer wait of robot `y` at the start of one of its legs under way while
+    /// robot `r`'s new plan `s` runs (from `t0`) that clears `y` of `s` and of every other
+    /// robot from that leg on, and ends `y` before `makespan`: the leg, its wait before and
+    /// after, the new leg and `y`'s new plan.
+    fn waited(
+        &self,
+        draft: &Draft,
+        (r, s, t0): (usize, &RobotSchedule, f64),
+        y: usize,
+        makespan: f64,
+    ) -> Option<(usize, (f64, f64), Leg, RobotSchedule)> {
+        let robots = draft.robots;
+        let room = makespan - robots[y].end;
+        if room <= 0.0 {
+            return None;
+        }
+        let (cell, opts) = (self.cell, &self.opts.check);
+        let legs_of_y = (robots[y].segments.iter())
+            .filter(|g| g.end > t0 && g.start < s.end)
+            .filter_map(|g| g.leg);
+        let mut tried = Vec::new();
+        for m in legs_of_y {
+            if tried.contains(&m) {
+                continue;
+            }
+            tried.push(m);
+            let old = leg(draft.legs, y, m).clone();
+            let Some(t0y) = (robots[y].segments.iter())
+                .find(|g| g.leg == Some(m))
+                .map(|g| g.start)
+            else {
+                continue;
+            };
+            let attempt = |w: f64| -> Option<(Leg, RobotSchedule)> {
+                let new = Leg {
+                    wait: old.wait + w,
+                    ..old.clone()
+                };
+                let p = self.rebuilt(draft, y, m, new.clone())?;
+                if p.end >= makespan {
+                    return None;
+                }
+                let from = t0.min(t0y);
+                let apart = clears(cell, (y, &p), (r, s), (from, p.end.max(s.end)), opts);
+                let others = (0..robots.len()).filter(|&z| z != y && z != r).all(|z| {
+                    clears(
+                        cell,
+                        (y, &p),
+                        (z, &robots[z]),
+                        (t0y, p.end.max(robots[z].end)),
+                        opts,
+                    )
+                });
+                (apart && others).then_some((new, p))
+            };
+            let Some(k) = WAITS.iter().position(|f| attempt(f * room).is_some()) else {
+                continue;
+            };
+            let mut below = k.checked_sub(1).map_or(0.0, |j| WAITS[j] * room);
+            let mut w = WAITS[k] * room;
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (below + w);
+                match attempt(mid) {
+                    Some(_) => w = mid,
+                    None => below = mid,
+                }
+            }
+            let (new, p) = attempt(w)?;
+            return Some((m, (old.wait, new.wait), new, p));
+        }
+        None
+    }
+}
