@@ -161,3 +161,106 @@ impl Search<'_> {
         None
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wcp::legs::{default_legs, with_leg};
+    use crate::wcp::options::SolveOptions;
+    use crate::wcp::prepare::{prepare, StageTimes};
+    use std::sync::Arc;
+
+    /// X crosses from (-5, 0) to its task at (5, 0) and back; Y goes from (0, -5) to its
+    /// task at (0, 5), 9 s long, after a wait of 4 s at home that lets X by; Z, when there,
+    /// crosses from (-3, -2) to (3, -2) and back, where Y would meet it without its wait.
+    fn cell(z: bool) -> String {
+        let square = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
+        let mut robots = vec![
+            format!(r#"{{"name": "X", "home": [-5, 0, 0], {square}}}"#),
+            format!(r#"{{"name": "Y", "home": [0, -5, 0], {square}}}"#),
+        ];
+        let mut tasks = vec![
+            r#"{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]}"#.to_owned(),
+            r#"{"name": "y", "at": [0, 5, 0], "duration": 9.0, "robots": ["Y"]}"#.to_owned(),
+        ];
+        if z {
+            robots.push(format!(r#"{{"name": "Z", "home": [-3, -2, 0], {square}}}"#));
+            tasks.push(
+                r#"{"name": "z", "at": [3, -2, 0], "duration": 1.0, "robots": ["Z"]}"#.to_owned(),
+            );
+        }
+        format!(
+            r#"{{"delta": 0.01, "robots": [{}], "tasks": [{}]}}"#,
+            robots.join(", "),
+            tasks.join(", ")
+        )
+    }
+
+    /// What [`Search::give_way`] makes of the certified schedule of `cell(z)`, and whether
+    /// what it gives keeps every pair of robots apart (each robot on its new plan).
+    fn given_way(z: bool) -> (Option<GiveWay>, bool) {
+        let cell = crate::cell::parse_cell(&cell(z), "test.json".as_ref())
+            .unwrap()
+            .cell;
+        let opts = SolveOptions::default();
+        let prepared = prepare(&cell, &opts, &()).unwrap();
+        let mut search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
+        let n = cell.robots.len();
+        let routes: Vec<Vec<usize>> = (0..n).map(|r| vec![r]).collect();
+        let wait = Leg {
+            wait: 4.0,
+            pieces: None,
+        };
+        let legs = with_leg(&default_legs(n), 1, 0, wait);
+        let build =
+            |r: usize| RobotSchedule::build(&cell, r, &routes[r], &legs[r], &prepared.moves);
+        let robots: Vec<Arc<RobotSchedule>> = (0..n).map(|r| Arc::new(build(r).unwrap())).collect();
+        let root = search.add_root(&routes).unwrap().unwrap();
+        let node = super::super::Node::by_hand(root, &routes, legs.clone(), robots.clone());
+        let waits = search.add(node);
+        search.check_all(&[waits], &());
+        assert_eq!(search.best, Some(waits), "Y's wait lets the others by");
+        let draft = Draft {
+            id: waits,
+            routes: &routes,
+            legs: &legs,
+            robots: &robots,
+        };
+        let Some(g) = search.give_way(&draft) else {
+            return (None, true);
+        };
+        let mut now: Vec<&RobotSchedule> = robots.iter().map(|s| &**s).collect();
+        (now[g.r], now[g.y]) = (&g.r_plan, &g.y_plan);
+        let apart = (0..n).all(|a| {
+            (a + 1..n).all(|b| clears(&cell, (a, now[a]), (b, now[b]), (0.0, 60.0), &opts.check))
+        });
+        (Some(g), apart)
+    }
+
+    /// Y, last, is let through by X alone: its wait cut, X's longer, X still ending sooner.
+    #[test]
+    fn one_robot_in_the_way_waits_for_the_last() {
+        let (g, apart) = given_way(false);
+        let g = g.expect("X lets Y through");
+        assert!(apart);
+        assert_eq!((g.r, g.y, g.m), (1, 0, 0));
+        assert!(
+            g.cut.1 < g.cut.0 && g.wait.1 > g.wait.0,
+            "{:?} {:?}",
+            g.cut,
+            g.wait
+        );
+        assert!(g.y_plan.end < g.r_plan.end + g.cut.0 - g.cut.1);
+    }
+
+    /// With Z, both X and Z are in Y's way when Y does not wait at all: neither is asked
+    /// to let Y through alone (Y would still meet the other); a shorter wait that clears
+    /// both is the other shortenings' business.
+    #[test]
+    fn a_robot_is_let_through_only_where_one_alone_is_in_its_way() {
+        let (g, apart) = given_way(true);
+        assert!(apart);
+        assert!(g.is_none(), "{:?}", g.map(|g| (g.cut, g.y, g.wait)));
+    }
+}
