@@ -52,9 +52,6 @@ impl Search<'_> {
                 let Some(s) = self.rebuilt(draft, r, slack.leg, leg) else {
                     continue;
                 };
-                if s.end >= robots[r].end {
-                    continue;
-                }
                 let mut blockers = (0..robots.len()).filter(|&y| {
                     y != r
                         && !clears(
@@ -126,10 +123,8 @@ impl Search<'_> {
                     wait: old.wait + w,
                     ..old.clone()
                 };
+                // Later by `w`, so still before the makespan.
                 let p = self.rebuilt(draft, y, m, new.clone())?;
-                if p.end >= makespan {
-                    return None;
-                }
                 let from = t0.min(t0y);
                 let apart = clears(cell, (y, &p), (r, s), (from, p.end.max(s.end)), opts);
                 let others = (0..robots.len()).filter(|&z| z != y && z != r).all(|z| {
@@ -173,7 +168,7 @@ mod tests {
     /// X crosses from (-5, 0) to its task at (5, 0) and back; Y goes from (0, -5) to its
     /// task at (0, 5), 9 s long, after a wait of 4 s at home that lets X by; Z, when there,
     /// crosses from (-3, -2) to (3, -2) and back, where Y would meet it without its wait.
-    fn cell(z: bool) -> String {
+    fn cell(z: Option<([f64; 2], [f64; 2])>, x_task: f64) -> String {
         let square = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
              "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
         let mut robots = vec![
@@ -181,14 +176,17 @@ mod tests {
             format!(r#"{{"name": "Y", "home": [0, -5, 0], {square}}}"#),
         ];
         let mut tasks = vec![
-            r#"{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]}"#.to_owned(),
+            format!(r#"{{"name": "x", "at": [5, 0, 0], "duration": {x_task}, "robots": ["X"]}}"#),
             r#"{"name": "y", "at": [0, 5, 0], "duration": 9.0, "robots": ["Y"]}"#.to_owned(),
         ];
-        if z {
-            robots.push(format!(r#"{{"name": "Z", "home": [-3, -2, 0], {square}}}"#));
-            tasks.push(
-                r#"{"name": "z", "at": [3, -2, 0], "duration": 1.0, "robots": ["Z"]}"#.to_owned(),
-            );
+        if let Some((home, at)) = z {
+            let [(hx, hy), (ax, ay)] = [home, at].map(|p| (p[0], p[1]));
+            robots.push(format!(
+                r#"{{"name": "Z", "home": [{hx}, {hy}, 0], {square}}}"#
+            ));
+            tasks.push(format!(
+                r#"{{"name": "z", "at": [{ax}, {ay}, 0], "duration": 1.0, "robots": ["Z"]}}"#
+            ));
         }
         format!(
             r#"{{"delta": 0.01, "robots": [{}], "tasks": [{}]}}"#,
@@ -199,8 +197,8 @@ mod tests {
 
     /// What [`Search::give_way`] makes of the certified schedule of `cell(z)`, and whether
     /// what it gives keeps every pair of robots apart (each robot on its new plan).
-    fn given_way(z: bool) -> (Option<GiveWay>, bool) {
-        let cell = crate::cell::parse_cell(&cell(z), "test.json".as_ref())
+    fn given_way(z: Option<([f64; 2], [f64; 2])>, x_task: f64) -> (Option<GiveWay>, bool) {
+        let cell = crate::cell::parse_cell(&cell(z, x_task), "test.json".as_ref())
             .unwrap()
             .cell;
         let opts = SolveOptions::default();
@@ -241,7 +239,7 @@ mod tests {
     /// Y, last, is let through by X alone: its wait cut, X's longer, X still ending sooner.
     #[test]
     fn one_robot_in_the_way_waits_for_the_last() {
-        let (g, apart) = given_way(false);
+        let (g, apart) = given_way(None, 11.8);
         let g = g.expect("X lets Y through");
         assert!(apart);
         assert_eq!((g.r, g.y, g.m), (1, 0, 0));
@@ -259,8 +257,16 @@ mod tests {
     /// both is the other shortenings' business.
     #[test]
     fn a_robot_is_let_through_only_where_one_alone_is_in_its_way() {
-        let (g, apart) = given_way(true);
+        let (g, apart) = given_way(Some(([-3.0, -2.0], [3.0, -2.0])), 1.0);
         assert!(apart);
         assert!(g.is_none(), "{:?}", g.map(|g| (g.cut, g.y, g.wait)));
+    }
+
+    /// Z crosses X's home twice, on its way to and from its task beside it: X let through
+    /// by waiting longer at home only where Z does not run into it there.
+    #[test]
+    fn the_robot_that_waits_stays_clear_of_the_others() {
+        let (_, apart) = given_way(Some(([-5.0, -1.5], [-5.0, 1.5])), 1.0);
+        assert!(apart);
     }
 }
