@@ -239,7 +239,7 @@ mod tests {
     /// Y, last, is let through by X alone: its wait cut, X's longer, X still ending sooner.
     #[test]
     fn one_robot_in_the_way_waits_for_the_last() {
-        let (g, apart) = given_way(None, 11.8);
+        let (g, apart) = given_way(None, 1.0);
         let g = g.expect("X lets Y through");
         assert!(apart);
         assert_eq!((g.r, g.y, g.m), (1, 0, 0));
