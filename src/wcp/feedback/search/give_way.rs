@@ -15,6 +15,15 @@ const CUTS: [f64; 3] = [0.0, 0.5, 0.75];
 /// Shares of its room (up to the makespan) tried as the other robot's longer wait, least
 /// first; then bisected [`BISECTIONS`] times.
 const WAITS: [f64; 4] = [0.25, 0.5, 0.75, 0.97];
+// A wait shifts the rest of the robot's plan by as much: under 1 of its room, it still ends
+// before the makespan.
+const _: () = {
+    let mut k = 0;
+    while k < WAITS.len() {
+        assert!(WAITS[k] > 0.0 && WAITS[k] < 1.0);
+        k += 1;
+    }
+};
 /// Bisections between the wait kept and the share below it.
 const BISECTIONS: usize = 3;
 
