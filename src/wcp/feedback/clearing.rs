@@ -35,12 +35,23 @@ pub(super) fn clears(
     (t0, t1): (f64, f64),
     opts: &CheckOptions,
 ) -> bool {
-    // Most candidates fail, most of them where a sample instant already shows the contact:
-    // one of x's (from the sample before t0, where the checker's window starts), or one of
-    // y's within the window (where both robots are posed between samples of their own).
-    !contact_at_a_sample(cell, (x, sx), (y, sy), (t0, t1), f64::NEG_INFINITY)
-        && !contact_at_a_sample(cell, (y, sy), (x, sx), (t0, t1), t0)
+    // Most candidates fail, most of them where a sample instant already shows the contact.
+    !sure_contact(cell, (x, sx), (y, sy), (t0, t1))
         && checked_clear(cell, (x, sx), (y, sy), (t0, t1), opts)
+}
+
+/// Whether a sample instant shows robots `x` and `y` in contact over `[t0, t1]`, as the
+/// checker would find it (so [`clears`] is false): one of `x`'s (from the sample before
+/// `t0`, where the checker's window starts), or one of `y`'s within the window (where both
+/// robots are posed between samples of their own).
+pub(super) fn sure_contact(
+    cell: &Cell,
+    (x, sx): (usize, &RobotSchedule),
+    (y, sy): (usize, &RobotSchedule),
+    (t0, t1): (f64, f64),
+) -> bool {
+    contact_at_a_sample(cell, (x, sx), (y, sy), (t0, t1), f64::NEG_INFINITY)
+        || contact_at_a_sample(cell, (y, sy), (x, sx), (t0, t1), t0)
 }
 
 /// [`clears`] by the checker alone.

@@ -1,17 +1,15 @@
-//! The robot that ends last, let through: a wait or hold of it that one other robot alone
-//! keeps it from cutting is cut, and that robot waits longer at the start of one of its
-//! legs instead, where it still ends sooner than the makespan (`tighten.rs` tries it once
-//! nothing else shortens).
+//! The robot that ends last, let through: a wait, hold or slowed motion of it that one
+//! other robot alone keeps it from dropping is dropped, and that robot waits longer at the
+//! start of one of its legs instead, where it still ends sooner than the makespan
+//! (`tighten.rs` tries it once nothing else shortens).
 
 use super::draft::Draft;
 use super::shorten::{excess, slacks, with_excess, Slack};
 use super::Search;
-use crate::wcp::feedback::clearing::clears;
+use crate::wcp::feedback::clearing::{clears, sure_contact};
 use crate::wcp::legs::{leg, Leg};
 use crate::wcp::schedule::RobotSchedule;
 
-/// Shares of its slack the last robot's wait or hold is cut to, tried in order.
-const CUTS: [f64; 3] = [0.0, 0.5, 0.75];
 /// Shares of its room (up to the makespan) tried as the other robot's longer wait, least
 /// first; then bisected [`BISECTIONS`] times.
 const WAITS: [f64; 4] = [0.25, 0.5, 0.75, 0.97];
@@ -31,7 +29,7 @@ const BISECTIONS: usize = 3;
 pub(super) struct GiveWay {
     pub(super) r: usize,
     pub(super) slack: Slack,
-    /// `r`'s slack before and after.
+    /// `r`'s slack before and after (none).
     pub(super) cut: (f64, f64),
     pub(super) r_plan: RobotSchedule,
     pub(super) y: usize,
@@ -56,39 +54,36 @@ impl Search<'_> {
                 .iter()
                 .find(|g| g.leg == Some(slack.leg))
                 .map(|g| g.start)?;
-            for cut in CUTS.map(|c| c * before) {
-                let leg = with_excess(draft.legs, r, slack, cut);
-                let Some(s) = self.rebuilt(draft, r, slack.leg, leg) else {
-                    continue;
-                };
-                let mut blockers = (0..robots.len()).filter(|&y| {
-                    y != r
-                        && !clears(
-                            cell,
-                            (r, &s),
-                            (y, &robots[y]),
-                            (t0, s.end.max(robots[y].end)),
-                            opts,
-                        )
+            let leg = with_excess(draft.legs, r, slack, 0.0);
+            let Some(s) = self.rebuilt(draft, r, slack.leg, leg) else {
+                continue;
+            };
+            let window = |y: usize| (t0, s.end.max(robots[y].end));
+            let others = || (0..robots.len()).filter(|&y| y != r);
+            // Only where one robot alone is in the way: it alone must wait. Two seen in the
+            // way at a sample instant settle it without a check.
+            let mut sure =
+                others().filter(|&y| sure_contact(cell, (r, &s), (y, &robots[y]), window(y)));
+            if let (Some(_), Some(_)) = (sure.next(), sure.next()) {
+                continue;
+            }
+            let mut blockers =
+                others().filter(|&y| !clears(cell, (r, &s), (y, &robots[y]), window(y), opts));
+            let (Some(y), None) = (blockers.next(), blockers.next()) else {
+                continue;
+            };
+            if let Some((m, wait, y_leg, y_plan)) = self.waited(draft, (r, &s, t0), y, makespan) {
+                return Some(GiveWay {
+                    r,
+                    slack,
+                    cut: (before, 0.0),
+                    r_plan: s,
+                    y,
+                    m,
+                    wait,
+                    y_leg,
+                    y_plan,
                 });
-                // Only where one robot alone is in the way: it alone must wait.
-                let (Some(y), None) = (blockers.next(), blockers.next()) else {
-                    continue;
-                };
-                if let Some((m, wait, y_leg, y_plan)) = self.waited(draft, (r, &s, t0), y, makespan)
-                {
-                    return Some(GiveWay {
-                        r,
-                        slack,
-                        cut: (before, cut),
-                        r_plan: s,
-                        y,
-                        m,
-                        wait,
-                        y_leg,
-                        y_plan,
-                    });
-                }
             }
         }
         None
