@@ -142,7 +142,7 @@ pub struct SearchOptions {
     /// collision-blind plan. A re-sequencing: none without [`Remedies::resequence`].
     pub idle_roots: usize,
     /// Whether shortening the answer may let the robot that ends last through: a wait or
-    /// hold of it that one other robot alone keeps it from cutting is cut, and that robot
+    /// hold of it that one other robot alone keeps it from dropping is dropped, and that robot
     /// waits longer instead, where it still ends sooner (`search/give_way.rs`; only where
     /// [`Remedies::wait`] allows waits). On by default; off to see the other shortenings
     /// alone.
