@@ -130,12 +130,12 @@ impl Search<'_> {
             };
             let best = self.best.expect("an incumbent is certified");
             let (m, bound) = (self.nodes[child].makespan, self.nodes[best].makespan);
-            progress.iteration(self.checked, m, None);
             // Shortened slack brings robots home no later: the answer's own shortening
-            // wins a tie.
+            // wins a tie. Only a new best is a round heard: the last heard is the answer.
             if m < bound * (1.0 - super::SAME_MAKESPAN) || (id == best && m <= bound) {
                 // Found when the schedule it shortens was.
                 (self.best, self.best_at) = (Some(child), found_at);
+                progress.iteration(self.checked, m, None);
                 progress.certified(m);
             }
         }
