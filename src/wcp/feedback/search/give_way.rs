@@ -49,11 +49,12 @@ impl Search<'_> {
         let (cell, opts) = (self.cell, &self.opts.check);
         for slack in slacks(draft.legs, r) {
             let before = excess(draft.legs, r, slack);
-            let t0 = robots[r]
-                .segments
-                .iter()
+            let Some(t0) = (robots[r].segments.iter())
                 .find(|g| g.leg == Some(slack.leg))
-                .map(|g| g.start)?;
+                .map(|g| g.start)
+            else {
+                continue;
+            };
             let leg = with_excess(draft.legs, r, slack, 0.0);
             let Some(s) = self.rebuilt(draft, r, slack.leg, leg) else {
                 continue;
@@ -142,7 +143,9 @@ impl Search<'_> {
                 });
                 (apart && others).then_some((new, p))
             };
-            let Some(k) = WAITS.iter().position(|f| attempt(f * room).is_some()) else {
+            let Some((k, mut kept)) =
+                (WAITS.iter().enumerate()).find_map(|(k, f)| Some((k, attempt(f * room)?)))
+            else {
                 continue;
             };
             let mut below = k.checked_sub(1).map_or(0.0, |j| WAITS[j] * room);
@@ -150,11 +153,11 @@ impl Search<'_> {
             for _ in 0..BISECTIONS {
                 let mid = 0.5 * (below + w);
                 match attempt(mid) {
-                    Some(_) => w = mid,
+                    Some(got) => (w, kept) = (mid, got),
                     None => below = mid,
                 }
             }
-            let (new, p) = attempt(w)?;
+            let (new, p) = kept;
             return Some((m, (old.wait, new.wait), new, p));
         }
         None
@@ -170,9 +173,9 @@ mod tests {
     use std::sync::Arc;
 
     /// X crosses from (-5, 0) to its task at (5, 0) and back; Y goes from (0, -5) to its
-    /// task at (0, 5), 9 s long, after a wait of 4 s at home that lets X by; Z, when there,
-    /// crosses from (-3, -2) to (3, -2) and back, where Y would meet it without its wait.
-    fn cell(z: Option<([f64; 2], [f64; 2])>, x_task: f64) -> String {
+    /// task at (0, 5), 9 s long, after a wait of 4 s at home that lets X by; Z, when given,
+    /// goes from its home to its task and back.
+    fn cell(z: Option<([f64; 2], [f64; 2])>) -> String {
         let square = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
              "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
         let mut robots = vec![
@@ -180,7 +183,7 @@ mod tests {
             format!(r#"{{"name": "Y", "home": [0, -5, 0], {square}}}"#),
         ];
         let mut tasks = vec![
-            format!(r#"{{"name": "x", "at": [5, 0, 0], "duration": {x_task}, "robots": ["X"]}}"#),
+            r#"{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]}"#.to_owned(),
             r#"{"name": "y", "at": [0, 5, 0], "duration": 9.0, "robots": ["Y"]}"#.to_owned(),
         ];
         if let Some((home, at)) = z {
@@ -201,8 +204,8 @@ mod tests {
 
     /// What [`Search::give_way`] makes of the certified schedule of `cell(z)`, and whether
     /// what it gives keeps every pair of robots apart (each robot on its new plan).
-    fn given_way(z: Option<([f64; 2], [f64; 2])>, x_task: f64) -> (Option<GiveWay>, bool) {
-        let cell = crate::cell::parse_cell(&cell(z, x_task), "test.json".as_ref())
+    fn given_way(z: Option<([f64; 2], [f64; 2])>) -> (Option<GiveWay>, bool) {
+        let cell = crate::cell::parse_cell(&cell(z), "test.json".as_ref())
             .unwrap()
             .cell;
         let opts = SolveOptions::default();
@@ -243,7 +246,7 @@ mod tests {
     /// Y, last, is let through by X alone: its wait cut, X's longer, X still ending sooner.
     #[test]
     fn one_robot_in_the_way_waits_for_the_last() {
-        let (g, apart) = given_way(None, 1.0);
+        let (g, apart) = given_way(None);
         let g = g.expect("X lets Y through");
         assert!(apart);
         assert_eq!((g.r, g.y, g.m), (1, 0, 0));
@@ -261,7 +264,7 @@ mod tests {
     /// both is the other shortenings' business.
     #[test]
     fn a_robot_is_let_through_only_where_one_alone_is_in_its_way() {
-        let (g, apart) = given_way(Some(([-3.0, -2.0], [3.0, -2.0])), 1.0);
+        let (g, apart) = given_way(Some(([-3.0, -2.0], [3.0, -2.0])));
         assert!(apart);
         assert!(g.is_none(), "{:?}", g.map(|g| (g.cut, g.y, g.wait)));
     }
@@ -270,7 +273,7 @@ mod tests {
     /// by waiting longer at home only where Z does not run into it there.
     #[test]
     fn the_robot_that_waits_stays_clear_of_the_others() {
-        let (_, apart) = given_way(Some(([-5.0, -1.5], [-5.0, 1.5])), 1.0);
+        let (_, apart) = given_way(Some(([-5.0, -1.5], [-5.0, 1.5])));
         assert!(apart);
     }
 }

@@ -53,17 +53,18 @@ impl Search<'_> {
                     if saved <= 0.0 {
                         return None;
                     }
-                    let k = (WAIT_FRACTIONS.iter()).position(|f| attempt(f * saved).is_some())?;
+                    let (k, mut kept) = (WAIT_FRACTIONS.iter().enumerate())
+                        .find_map(|(k, f)| Some((k, attempt(f * saved)?)))?;
                     let mut below = k.checked_sub(1).map_or(0.0, |j| WAIT_FRACTIONS[j] * saved);
                     let mut wait = WAIT_FRACTIONS[k] * saved;
                     for _ in 0..BISECTIONS {
                         let mid = 0.5 * (below + wait);
                         match attempt(mid) {
-                            Some(_) => wait = mid,
+                            Some(s) => (wait, kept) = (mid, s),
                             None => below = mid,
                         }
                     }
-                    (wait, attempt(wait)?)
+                    (wait, kept)
                 }
                 None => return None,
             };
