@@ -11,7 +11,7 @@ use crate::cell::{Cell, RobotKind};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
 use crate::geometry::{closest_features, Posed, WalkTolerances};
 use crate::motion::{Sample, Trajectory};
-use crate::wcp::schedule::RobotSchedule;
+use crate::wcp::schedule::{PoseCursor, RobotSchedule};
 
 /// Values of [`least`]'s first scan, evenly spaced over the bracket: clearing need not be
 /// monotone (a robot may pass before the other arrives, or only after it has gone), so the
@@ -116,24 +116,29 @@ fn contact_at_a_sample(
     let reach = rx.shape.radius() + ry.shape.radius() + near;
     let tol = WalkTolerances::default();
     let (first, last) = window(&sx.samples, t0, t1);
-    (sx.samples[first..=last].iter())
+    let mut instants = (sx.samples[first..=last].iter())
         .skip_while(|s| s.t < from)
         .take_while(|s| s.t <= t1)
-        .any(|s| {
-            // In a frame centred on x, as the checker works.
-            let q = sy.pose_at(s.t);
-            let rel = q.pos - s.pos;
-            if rel.norm() >= reach {
-                return false;
-            }
-            rx.pieces().iter().any(|a| {
-                let a = Posed::new(a, 0.0, 0.0, s.theta);
-                ry.pieces().iter().any(|b| {
-                    let b = Posed::new(b, rel.x, rel.y, q.theta);
-                    closest_features(&a, &b, None, &tol).distance < near
-                })
+        .peekable();
+    let Some(start) = instants.peek().map(|s| s.t) else {
+        return false;
+    };
+    let mut y_at = PoseCursor::new(sy, start);
+    instants.any(|s| {
+        // In a frame centred on x, as the checker works.
+        let q = y_at.at(s.t);
+        let rel = q.pos - s.pos;
+        if rel.norm() >= reach {
+            return false;
+        }
+        rx.pieces().iter().any(|a| {
+            let a = Posed::new(a, 0.0, 0.0, s.theta);
+            ry.pieces().iter().any(|b| {
+                let b = Posed::new(b, rel.x, rel.y, q.theta);
+                closest_features(&a, &b, None, &tol).distance < near
             })
         })
+    })
 }
 
 /// The first and last indices of the samples that pose the robot over `[t0, t1]`: from the

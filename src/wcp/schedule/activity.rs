@@ -240,27 +240,7 @@ impl RobotSchedule {
     /// # Ok::<(), workcell::cell::InputError>(())
     /// ```
     pub fn pose_at(&self, t: f64) -> Pose {
-        let s = &self.samples;
-        let k = s.partition_point(|p| p.t <= t);
-        if k == 0 {
-            return Pose {
-                pos: s[0].pos,
-                theta: s[0].theta,
-            };
-        }
-        if k == s.len() {
-            let l = &s[s.len() - 1];
-            return Pose {
-                pos: l.pos,
-                theta: l.theta,
-            };
-        }
-        let (p, q) = (&s[k - 1], &s[k]);
-        let u = (t - p.t) / (q.t - p.t);
-        Pose {
-            pos: p.pos + (q.pos - p.pos) * u,
-            theta: p.theta + (q.theta - p.theta) * u,
-        }
+        interpolate(&self.samples, self.samples.partition_point(|p| p.t <= t), t)
     }
 
     /// The robot's convex pieces placed as at time `t` (as the checker interpolates): its
@@ -364,5 +344,88 @@ pub(crate) fn joints_at(joints: &[JointSample], t: f64) -> Vec<f64> {
                 .map(|(a, b)| a + (b - a) * u)
                 .collect()
         }
+    }
+}
+
+/// The pose at `t` between samples `k - 1` and `k`, `k` the first sample after `t` (the first
+/// or last pose outside the samples).
+fn interpolate(s: &[Sample], k: usize, t: f64) -> Pose {
+    if k == 0 {
+        return Pose {
+            pos: s[0].pos,
+            theta: s[0].theta,
+        };
+    }
+    if k == s.len() {
+        let l = &s[s.len() - 1];
+        return Pose {
+            pos: l.pos,
+            theta: l.theta,
+        };
+    }
+    let (p, q) = (&s[k - 1], &s[k]);
+    let u = (t - p.t) / (q.t - p.t);
+    Pose {
+        pos: p.pos + (q.pos - p.pos) * u,
+        theta: p.theta + (q.theta - p.theta) * u,
+    }
+}
+
+/// [`RobotSchedule::pose_at`] at times that never go back: the sample after the last time
+/// asked is kept, so a walk over another robot's sample instants steps instead of
+/// searching the whole schedule each time.
+pub(crate) struct PoseCursor<'a> {
+    samples: &'a [Sample],
+    k: usize,
+}
+
+impl<'a> PoseCursor<'a> {
+    /// A cursor for `schedule` at times from `t0` on.
+    pub(crate) fn new(schedule: &'a RobotSchedule, t0: f64) -> Self {
+        let samples = &schedule.samples[..];
+        let k = samples.partition_point(|p| p.t <= t0);
+        PoseCursor { samples, k }
+    }
+
+    /// The pose at `t`, exactly as [`RobotSchedule::pose_at`] gives it; `t` at least the
+    /// last time asked (and `t0`).
+    pub(crate) fn at(&mut self, t: f64) -> Pose {
+        debug_assert!(
+            self.k == 0 || self.samples[self.k - 1].t <= t,
+            "times go back"
+        );
+        while self.samples.get(self.k).is_some_and(|p| p.t <= t) {
+            self.k += 1;
+        }
+        interpolate(self.samples, self.k, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planning::PlannerOptions;
+    use crate::wcp::MoveStore;
+
+    /// The cursor poses the robot exactly as `pose_at` does: at, between, before and after
+    /// the samples, and when asked the same time twice.
+    #[test]
+    fn cursor_poses_as_pose_at() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cells/feedback-cell.json");
+        let cell = crate::cell::load_cell(path.as_ref()).unwrap().cell;
+        let store = MoveStore::new(&cell, &PlannerOptions::default());
+        let s = RobotSchedule::build(&cell, 0, &[0], &[], &store).unwrap();
+        let mut times: Vec<f64> = (s.samples.windows(2))
+            .flat_map(|w| [w[0].t, w[0].t, 0.5 * (w[0].t + w[1].t)])
+            .chain([-1.0, s.end, s.end + 3.0])
+            .collect();
+        times.sort_by(f64::total_cmp);
+        for t0 in [-1.0, 0.5 * s.end] {
+            let mut cursor = PoseCursor::new(&s, t0);
+            for &t in times.iter().filter(|&&t| t >= t0) {
+                assert_eq!(cursor.at(t), s.pose_at(t), "at t = {t}");
+            }
+        }
+        assert!(times.len() > 20);
     }
 }

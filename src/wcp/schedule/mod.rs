@@ -8,7 +8,7 @@ mod activity;
 mod timeline;
 mod whole;
 
-pub(crate) use activity::joints_at;
+pub(crate) use activity::{joints_at, PoseCursor};
 pub use activity::{route_nodes, Activity, Delay, RobotSchedule, Segment};
 pub use timeline::BuildError;
 pub use whole::{Collision, Schedule};
