@@ -199,17 +199,8 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
 fn two_moves_timed_together_are_reported_and_replayed() {
     let cell = generated("tune", "ring", 6);
     let cell = cell.as_str();
-    let others = "resequence,wait,pause,slow,detour,step-aside";
-    let refused = workcell(&["solve", cell, "--remedies", others]);
-    assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
-    let solved = workcell(&["solve", cell, "--json"]);
-    assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
-    let result = json(&solved);
-    let rounds = result["feedback"].as_array().unwrap();
-    let tuned = (rounds.iter())
-        .find(|r| r["remedy"] == "tune")
-        .expect("a round of two moves timed together");
-    let change = &tuned["tune"];
+    let (solved, result) = solved_only_with(cell, "resequence,wait,pause,slow,detour,step-aside");
+    let change = &round_of(&result, "tune")["tune"];
     for key in ["robot", "on", "with", "with_on"] {
         assert!(change[key].is_string(), "{change}");
     }
@@ -235,16 +226,8 @@ fn a_convoy_is_reported_and_replayed() {
     let cell = generated("convoy", "ring", 8);
     let cell = cell.as_str();
     let others = "resequence,wait,pause,slow,detour,step-aside,tune";
-    let refused = workcell(&["solve", cell, "--remedies", others]);
-    assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
-    let solved = workcell(&["solve", cell, "--json"]);
-    assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
-    let result = json(&solved);
-    let rounds = result["feedback"].as_array().unwrap();
-    let round = (rounds.iter())
-        .find(|r| r["remedy"] == "convoy")
-        .expect("a round of a convoy");
-    let change = &round["convoy"];
+    let (solved, result) = solved_only_with(cell, others);
+    let change = &round_of(&result, "convoy")["convoy"];
     assert!(
         change["robot"].is_string() && change["on"].is_string(),
         "{change}"
@@ -443,4 +426,22 @@ fn idle_roots_leave_a_robot_at_home() {
         !blind.as_array().unwrap().is_empty(),
         "R1 works in the blind plan"
     );
+}
+
+/// `cell` refused (exit 1) with only the remedies `others`, then solved (exit 0) with all of
+/// them: the output and its JSON.
+fn solved_only_with(cell: &str, others: &str) -> (Output, Value) {
+    let refused = workcell(&["solve", cell, "--remedies", others]);
+    assert_eq!(refused.status.code(), Some(1), "{}", text(&refused.stdout));
+    let solved = workcell(&["solve", cell, "--json"]);
+    assert_eq!(solved.status.code(), Some(0), "{}", text(&solved.stderr));
+    let result = json(&solved);
+    (solved, result)
+}
+
+/// The first round of the result's feedback that took `remedy`.
+fn round_of<'a>(result: &'a Value, remedy: &str) -> &'a Value {
+    (result["feedback"].as_array().unwrap().iter())
+        .find(|r| r["remedy"] == remedy)
+        .unwrap_or_else(|| panic!("a round of {remedy}"))
 }
