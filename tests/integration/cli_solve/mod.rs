@@ -39,14 +39,22 @@ fn generated(tag: &str, kind: &str, k: usize) -> String {
     cell.to_str().unwrap().to_owned()
 }
 
-/// `evaluate` replays a solve's result document (its changed moves and holds) to the same
-/// makespan.
-fn replays_to_the_same_makespan(cell: &str, solved: &std::process::Output, tag: &str) {
-    let document = temp_dir_made("solve", tag).join("result.json");
+/// `evaluate` replays a solve's result document (its changed moves and holds), then its own
+/// output, each time giving what the solve gave under `keys`.
+fn replays_to_the_same(cell: &str, solved: &Output, tag: &str, keys: &[&str]) {
+    let result = json(solved);
+    let mut document = temp_dir_made("solve", tag).join("result.json");
     std::fs::write(&document, &solved.stdout).unwrap();
-    let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
-    assert_eq!(json(&out)["makespan"], json(solved)["makespan"]);
+    for round in 0..2 {
+        let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
+        let how = format!("round {round}: {}", text(&out.stdout));
+        assert_eq!(out.status.code(), Some(0), "{how}");
+        for key in keys {
+            assert_eq!(json(&out)[key], result[key], "{key}, {how}");
+        }
+        document = temp_dir_made("solve", tag).join(format!("evaluated-{round}.json"));
+        std::fs::write(&document, &out.stdout).unwrap();
+    }
 }
 
 /// The feedback cell with `edit` applied, written to a per-test file.

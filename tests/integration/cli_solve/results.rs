@@ -174,21 +174,7 @@ fn evaluate_reproduces_results_with_waits_and_its_own_output() {
         !result["waits"].as_array().unwrap().is_empty(),
         "the crossing needs a wait"
     );
-    let mut document = temp_dir_made("solve", "waits").join("result.json");
-    std::fs::write(&document, &solved.stdout).unwrap();
-    // Twice: on the solve result, then on evaluate's own output.
-    for round in 0..2 {
-        let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "round {round}: {}",
-            text(&out.stdout)
-        );
-        assert_eq!(json(&out)["makespan"], result["makespan"]);
-        document = temp_dir_made("solve", "waits").join(format!("evaluated-{round}.json"));
-        std::fs::write(&document, &out.stdout).unwrap();
-    }
+    replays_to_the_same(cell, &solved, "waits", &["makespan"]);
 }
 
 /// `tune` times two robots' moves together: the round says so under `"tune"` (both robots,
@@ -214,7 +200,7 @@ fn two_moves_timed_together_are_reported_and_replayed() {
     }
     let words = workcell(&["solve", cell]);
     assert!(text(&words.stdout).contains("time their moves together"));
-    replays_to_the_same_makespan(cell, &solved, "tune");
+    replays_to_the_same(cell, &solved, "tune", &["makespan", "legs"]);
 }
 
 /// A convoy sends every robot of a ring round it together: the round says so under
@@ -245,7 +231,7 @@ fn a_convoy_is_reported_and_replayed() {
     let words = workcell(&["solve", cell]);
     assert!(text(&words.stdout).contains("go round the loop together, "));
     assert!(text(&words.stdout).contains("each following the one ahead"));
-    replays_to_the_same_makespan(cell, &solved, "convoy");
+    replays_to_the_same(cell, &solved, "convoy", &["makespan", "legs"]);
 }
 
 #[test]
@@ -272,21 +258,7 @@ fn evaluate_replays_the_changed_moves_of_a_search_and_refuses_tampered_ones() {
         }
     }
     assert!(!kinds.is_empty());
-    let mut document = temp_dir_made("solve", "legs").join("result.json");
-    std::fs::write(&document, &solved.stdout).unwrap();
-    for round in 0..2 {
-        let out = workcell(&["evaluate", cell, document.to_str().unwrap(), "--json"]);
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "round {round}: {}",
-            text(&out.stdout)
-        );
-        assert_eq!(json(&out)["makespan"], result["makespan"]);
-        assert_eq!(json(&out)["legs"], result["legs"]);
-        document = temp_dir_made("solve", "legs").join(format!("evaluated-{round}.json"));
-        std::fs::write(&document, &out.stdout).unwrap();
-    }
+    replays_to_the_same(cell, &solved, "legs", &["makespan", "legs"]);
     // A motion run faster than planned would break the limits: refused, naming the field.
     let tampered = |change: &dyn Fn(&mut Value)| {
         let mut doc = result.clone();
