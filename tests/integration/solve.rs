@@ -1,9 +1,9 @@
 //! `solve` end to end on the shipped cells: the schedules are checked by the checker, every
 //! task is done once by an allowed robot for its duration, and the feedback loop acts.
 
-use crate::common::{shipped, solve_with};
+use crate::common::{assert_export_certified, shipped, solve_with};
 use std::path::Path;
-use workcell::cell::{load_cell, parse_cell, parse_scene, scene_document, Cell};
+use workcell::cell::{load_cell, parse_cell, Cell};
 use workcell::collision::{check, CheckOptions};
 use workcell::planning::rest_to_rest_time;
 use workcell::wcp::{self, Activity, Feedback, Remedy, RemedyKind, SolveOptions, Solved};
@@ -16,18 +16,7 @@ fn solve(cell: &Cell, seed: u64) -> Solved {
 
 /// Every property the issue asks of a shipped cell's solution.
 fn assert_valid_solution(cell: &Cell, solved: &Solved) {
-    assert!(solved.collision_free, "{:?}", solved.failure);
-    // The exported scene, read back as a user's `check` would, is collision-free.
-    let text = serde_json::to_string(&scene_document(&solved.schedule.scene(cell))).unwrap();
-    let scene = parse_scene(&text, Path::new("exported.json"))
-        .expect("the export is a valid scene")
-        .scene;
-    let report = check(&scene, &CheckOptions::default());
-    assert!(
-        !report.collision && report.certified,
-        "{:?}",
-        report.first_contact
-    );
+    let scene = assert_export_certified(cell, solved);
     // Every task once, by an allowed robot, for its duration, at its pose.
     let mut done = vec![0; cell.tasks.len()];
     for (r, plan) in solved.schedule.robots.iter().enumerate() {

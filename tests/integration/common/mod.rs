@@ -230,6 +230,28 @@ pub fn solve_with(
     workcell::wcp::solve(cell, &prepared, opts, &()).expect("a usable cell")
 }
 
+/// The solved schedule's exported scene, read back as a user's `check` would read it, is
+/// certified collision-free: the scene read.
+pub fn assert_export_certified(
+    cell: &workcell::cell::Cell,
+    solved: &workcell::wcp::Solved,
+) -> workcell::collision::Scene {
+    use workcell::cell::{parse_scene, scene_document};
+    use workcell::collision::{check, CheckOptions};
+    assert!(solved.collision_free, "{:?}", solved.failure);
+    let text = serde_json::to_string(&scene_document(&solved.schedule.scene(cell))).unwrap();
+    let scene = parse_scene(&text, std::path::Path::new("exported.json"))
+        .expect("the export is a valid scene")
+        .scene;
+    let report = check(&scene, &CheckOptions::default());
+    assert!(
+        !report.collision && report.certified,
+        "{:?}",
+        report.first_contact
+    );
+    scene
+}
+
 /// A folder of this test run for test `test` of module `module`: made, and kept for the
 /// run (files in it are written over).
 pub fn temp_dir_made(module: &str, test: &str) -> std::path::PathBuf {

@@ -8,10 +8,10 @@ mod limits;
 mod remedies;
 mod rings;
 
-use crate::common::{shipped_cell, solve_with};
+use crate::common::{assert_export_certified, shipped_cell, solve_with};
 use std::path::{Path, PathBuf};
-use workcell::cell::{parse_cell, parse_scene, scene_document, Cell};
-use workcell::collision::{check, CheckOptions};
+use workcell::cell::{parse_cell, Cell};
+use workcell::collision::CheckOptions;
 use workcell::generate::{generate_conflict_cell, ConflictKind};
 use workcell::wcp::{self, Feedback, Remedies, Remedy, RemedyKind, SolveOptions, Solved};
 
@@ -75,17 +75,7 @@ fn remedies(solved: &Solved) -> Vec<&Remedy> {
 /// rest to rest on trapezoids sampled at their phase boundaries, so the slope of the
 /// sampled velocity is the acceleration).
 fn assert_certified_within_limits(cell: &Cell, solved: &Solved) {
-    assert!(solved.collision_free, "{:?}", solved.failure);
-    let text = serde_json::to_string(&scene_document(&solved.schedule.scene(cell))).unwrap();
-    let scene = parse_scene(&text, Path::new("exported.json"))
-        .unwrap()
-        .scene;
-    let report = check(&scene, &CheckOptions::default());
-    assert!(
-        !report.collision && report.certified,
-        "{:?}",
-        report.first_contact
-    );
+    assert_export_certified(cell, solved);
     let slack = 1.0 + 1e-6;
     for (r, plan) in solved.schedule.robots.iter().enumerate() {
         let robot = cell.rigid(r);
