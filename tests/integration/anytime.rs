@@ -1,7 +1,7 @@
 //! Anytime solving: `--effort` (deterministic work), `--time-limit` (a budget that is used)
 //! and `--trace` (the curve of better schedules).
 
-use crate::common::{shipped, temp_dir_absent, workcell};
+use crate::common::{on_threads, shipped, temp_dir_absent, workcell};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use workcell::wcp::sequencer::{solve, Instance, SequencerOptions};
@@ -24,14 +24,6 @@ fn plane(robots: usize, tasks: usize) -> Instance {
         },
     )
     .unwrap()
-}
-
-fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
 }
 
 /// More effort never gives a longer plan (effort n + 1 repeats effort n and goes on), and

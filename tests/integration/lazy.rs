@@ -3,6 +3,7 @@
 //! planned and certified, a time limit still gives a certified plan, and the result does not
 //! depend on the number of threads.
 
+use crate::common::on_threads;
 use std::path::Path;
 use std::time::Duration;
 use workcell::cell::{parse_cell, Cell};
@@ -183,11 +184,7 @@ fn lazy_granular_sequencing_is_the_same_on_1_2_and_4_threads() {
     let mut opts = opts(Planning::Lazy);
     opts.sequencer.iterations = 20;
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        on_threads(threads, || {
             let prepared = wcp::prepare(&cell, &opts, &()).unwrap();
             wcp::sequence(&cell, &prepared, &[], &opts).unwrap()
         })

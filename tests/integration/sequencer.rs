@@ -1,6 +1,7 @@
 //! The sequencer against an independent exhaustive search, and its contract:
 //! valid plans, honest costs, determinism, conflicts avoided.
 
+use crate::common::on_threads;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use workcell::wcp::sequencer::{
@@ -207,11 +208,7 @@ fn same_seed_same_solution_whatever_the_threads() {
     };
     let a = solve(&inst, &[], &opts).unwrap();
     let b = solve(&inst, &[], &opts).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let c = pool.install(|| solve(&inst, &[], &opts)).unwrap();
+    let c = on_threads(1, || solve(&inst, &[], &opts)).unwrap();
     assert_eq!(a, b);
     assert_eq!(a, c);
     assert_valid(&inst, &[], &a);
@@ -255,13 +252,8 @@ fn a_target_ends_the_search_once_met_and_changes_nothing_when_missed() {
     // Met at the free search's makespan: no longer than it, found as soon as it is.
     let exact = solve(&inst, &[], &aim(free.makespan)).unwrap();
     assert!(exact.makespan <= free.makespan * (1.0 + 1e-9));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
     assert_eq!(
-        pool.install(|| solve(&inst, &[], &aim(free.makespan)))
-            .unwrap(),
+        on_threads(1, || solve(&inst, &[], &aim(free.makespan))).unwrap(),
         exact
     );
     // One chain, aimed at a makespan it passes on the way: it stops at the first plan that

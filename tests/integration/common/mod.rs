@@ -252,6 +252,15 @@ pub fn assert_export_certified(
     scene
 }
 
+/// `f` run on a pool of `threads` threads (for tests that the thread count changes nothing).
+pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
 /// A folder of this test run for test `test` of module `module`: made, and kept for the
 /// run (files in it are written over).
 pub fn temp_dir_made(module: &str, test: &str) -> std::path::PathBuf {

@@ -161,11 +161,7 @@ fn the_search_is_the_same_on_one_two_and_four_threads() {
     // A node budget, not a time limit: the result depends on nothing else.
     opts.search.max_nodes = 400;
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        on_threads(threads, || {
             let solved = solve_with(&cell, &opts);
             let legs = wcp::remedy_json::legs_json(&cell, &solved.routes, &solved.legs);
             (

@@ -8,7 +8,7 @@ mod limits;
 mod remedies;
 mod rings;
 
-use crate::common::{assert_export_certified, shipped_cell, solve_with};
+use crate::common::{assert_export_certified, on_threads, shipped_cell, solve_with};
 use std::path::{Path, PathBuf};
 use workcell::cell::{parse_cell, Cell};
 use workcell::collision::CheckOptions;
