@@ -77,10 +77,11 @@ pub struct FeedbackArgs {
     /// The remedies the search may use, comma-separated: resequence, wait, pause, slow,
     /// detour (with it make-way: a robot in another's way leaves ahead of it, the other
     /// waits), step-aside, pass-aside (a robot on its way pulls in at a passing place beside
-    /// it, in the search's second pass), tune (two robots' moves timed together, for a pair
-    /// that collides again), convoy (every robot of a closed corridor round it together),
+    /// it, in the search's second pass), lanes (two robots that meet moving keep to opposite
+    /// sides where both fit side by side, in the second pass), tune (two robots' moves timed
+    /// together, for a pair that collides again), convoy (every robot of a closed corridor round it together),
     /// reconfigure (an arm's; default: all but reconfigure).
-    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "pass-aside", "tune", "convoy", "reconfigure"])]
+    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "pass-aside", "lanes", "tune", "convoy", "reconfigure"])]
     remedies: Option<Vec<String>>,
 }
 

@@ -182,6 +182,9 @@ pub struct Remedies {
     /// Pull in at a passing place beside the way (a bay off a corridor) and let the other
     /// pass: in the search's second pass only, once its queue is empty.
     pub pass_aside: bool,
+    /// Two robots that meet while both move, where both fit side by side, keep to opposite
+    /// sides of the line they meet along: in the search's second pass only.
+    pub lanes: bool,
     /// Time two robots' moves together in their coordination diagram, for a pair that
     /// collides again on the search's branch.
     pub tune: bool,
@@ -204,13 +207,14 @@ impl Remedies {
         detour: true,
         step_aside: true,
         pass_aside: true,
+        lanes: true,
         tune: true,
         convoy: true,
         reconfigure: true,
     };
 
     /// The names of `--remedies`, in this order.
-    pub const NAMES: [&'static str; 10] = [
+    pub const NAMES: [&'static str; 11] = [
         "resequence",
         "wait",
         "pause",
@@ -218,6 +222,7 @@ impl Remedies {
         "detour",
         "step-aside",
         "pass-aside",
+        "lanes",
         "tune",
         "convoy",
         "reconfigure",
@@ -242,6 +247,7 @@ impl Remedies {
             detour: false,
             step_aside: false,
             pass_aside: false,
+            lanes: false,
             tune: false,
             convoy: false,
             reconfigure: false,
@@ -255,6 +261,7 @@ impl Remedies {
                 "detour" => &mut set.detour,
                 "step-aside" => &mut set.step_aside,
                 "pass-aside" => &mut set.pass_aside,
+                "lanes" => &mut set.lanes,
                 "tune" => &mut set.tune,
                 "convoy" => &mut set.convoy,
                 "reconfigure" => &mut set.reconfigure,

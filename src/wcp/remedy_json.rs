@@ -26,6 +26,8 @@ pub enum ChangeJson {
     Reconfigure(ReconfigureJson),
     /// A robot in another's way leaves ahead of it; the other waits.
     MakeWay(MakeWayJson),
+    /// Two robots keep to opposite sides of the line they meet along.
+    Lanes(LanesJson),
     /// Two robots' moves timed together.
     Tune(TuneJson),
     /// Every robot of a loop round it together.
@@ -103,6 +105,23 @@ pub struct TunedHoldJson {
     pub at: [f64; 2],
     /// How long.
     pub duration: f64,
+}
+
+/// Two robots that meet while both move keep to opposite sides of the line they meet along.
+#[derive(Serialize)]
+pub struct LanesJson {
+    /// The first robot.
+    pub robot: String,
+    /// Its move.
+    pub on: String,
+    /// The other robot.
+    pub with: String,
+    /// The other's move.
+    pub with_on: String,
+    /// The first robot's new path of G.
+    pub path: Vec<[f64; 2]>,
+    /// The other's new path of G.
+    pub with_path: Vec<[f64; 2]>,
 }
 
 /// A robot standing in another's way leaves by another way, ahead of it; the other waits.
@@ -208,6 +227,7 @@ pub fn remedy_name(r: &Remedy) -> &'static str {
         RemedyKind::Detour { .. } => "detour",
         RemedyKind::StepAside { .. } => "step-aside",
         RemedyKind::MakeWay { .. } => "make-way",
+        RemedyKind::Lanes { .. } => "lanes",
         RemedyKind::Tune { .. } => "tune",
         RemedyKind::Convoy { .. } => "convoy",
         RemedyKind::Reconfigure { .. } => "reconfigure",
@@ -290,6 +310,18 @@ pub fn change_json(cell: &Cell, r: &Remedy) -> Option<ChangeJson> {
             ahead_of: cell.robots[*ahead_of].name.clone(),
             path: path.iter().map(|p| [p.x, p.y]).collect(),
             wait: *wait,
+        }),
+        RemedyKind::Lanes {
+            with,
+            path,
+            with_path,
+        } => ChangeJson::Lanes(LanesJson {
+            robot,
+            on,
+            with: cell.robots[with.robot].name.clone(),
+            with_on: move_name(cell, with.robot, with.nodes),
+            path: path.iter().map(|p| [p.x, p.y]).collect(),
+            with_path: with_path.iter().map(|p| [p.x, p.y]).collect(),
         }),
         RemedyKind::Tune { with, holds } => ChangeJson::Tune(TuneJson {
             robot,
@@ -397,6 +429,11 @@ pub fn remedy_text(cell: &Cell, r: &Remedy) -> String {
             cell.robots[*ahead_of].name,
             path.len(),
             seconds(*wait)
+        ),
+        RemedyKind::Lanes { with, .. } => format!(
+            "{who} and {} keep to opposite sides as they meet ({on}; {})",
+            cell.robots[with.robot].name,
+            move_name(cell, with.robot, with.nodes)
         ),
         RemedyKind::Tune { with, holds } => {
             let stops: Vec<String> = (holds.iter())

@@ -88,6 +88,16 @@ pub enum RemedyKind {
         /// How long the other waits before its move.
         wait: f64,
     },
+    /// Two robots that meet while both move keep to opposite sides of the line they meet
+    /// along, each on a new path (a remedy of the two at once).
+    Lanes {
+        /// The other robot's move.
+        with: RemedyLeg,
+        /// This robot's new path of G.
+        path: Vec<Vec2>,
+        /// The other's new path of G.
+        with_path: Vec<Vec2>,
+    },
     /// Two robots' moves timed together (velocity tuning in their coordination diagram):
     /// both keep their paths; each holds where its [`TunedHold`]s say.
     Tune {

@@ -313,6 +313,33 @@ pub(super) fn apart(
     })
 }
 
+/// Whether rigid robot `x` at `pose` keeps more than `margin` from every fixture, part by part.
+pub(super) fn clear_of_fixtures(
+    ctx: &Ctx,
+    x: usize,
+    pose: crate::motion::Pose,
+    margin: f64,
+) -> bool {
+    let tol = WalkTolerances::default();
+    let reach = ctx.cell.rigid(x).shape.radius() + margin;
+    let mut fixed = (ctx.moves.obstacles().iter()).filter_map(|o| match &o.motion {
+        crate::motion::Motion::Fixed(at) => Some((o, *at)),
+        _ => None,
+    });
+    fixed.all(|(o, at)| {
+        let parts = (o.parts.as_ref()).map_or(std::slice::from_ref(&o.shape), |p| p.parts());
+        parts.iter().all(|part| {
+            let other = Posed::new(part, at.pos.x, at.pos.y, at.theta);
+            ctx.cell.rigid(x).pieces().iter().all(|piece| {
+                let posed = Posed::new(piece, pose.pos.x, pose.pos.y, pose.theta);
+                // Far from the part's disc: no closest features needed.
+                (pose.pos - at.pos).norm() > part.radius() + reach
+                    || closest_features(&posed, &other, None, &tol).distance > margin
+            })
+        })
+    })
+}
+
 /// How far a robot's body reaches from the point it is placed by: a rigid robot's radius;
 /// an arm's largest link radius (about its joint).
 pub(super) fn body_radius(cell: &Cell, r: usize) -> f64 {

@@ -39,6 +39,7 @@ mod context;
 mod convoy;
 mod coordination;
 mod detour;
+mod lanes;
 mod make_way;
 mod pause;
 mod step_aside;
@@ -49,6 +50,7 @@ pub(super) use context::{Child, Ctx, View};
 
 use convoy::convoy;
 use detour::detour;
+use lanes::lanes;
 use make_way::make_way;
 use pause::{pause, slow};
 use step_aside::{pass_aside, step_aside};
@@ -108,6 +110,11 @@ pub(super) fn candidates(ctx: &Ctx, view: &View, c: &Collision, again: bool) -> 
                 .map(move |k| (side, k.1))
         })
         .collect();
+    // Both robots at once, each keeping to its side of the line they meet along: like
+    // passing places, in the second pass only.
+    if set.lanes && ctx.passing {
+        jobs.push((&sides[0], lanes));
+    }
     // Both robots at once, in one diagram, once per collision: for a pair that met before
     // on the branch, whose single changes did not keep it apart.
     if set.tune && again {

@@ -231,8 +231,9 @@ impl Search<'_> {
                 queued = true;
             }
         }
-        // Without passing places a colliding schedule has no child it did not have.
-        if !self.opts.search.remedies.pass_aside {
+        // Without passing places or lanes a colliding schedule has no child it did not have.
+        let set = self.opts.search.remedies;
+        if !set.pass_aside && !set.lanes {
             return queued;
         }
         let mut again: Vec<usize> = line.into_iter().collect();
