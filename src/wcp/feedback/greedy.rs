@@ -228,6 +228,7 @@ impl Greedy<'_> {
             failure,
             assignment: self.prepared.moves.assignment().clone(),
             times: self.times,
+            shortenings_refused: 0,
         }
     }
 }

@@ -261,6 +261,10 @@ pub struct Solved {
     pub found_after: Option<usize>,
     /// Wall time per stage.
     pub times: StageTimes,
+    /// Shortened answers (`tighten.rs`) that the check of the whole schedule refused. Each
+    /// step of a shortening proves its own changes clear, so none should be; a window that
+    /// started too late would show here, as a shortening silently lost.
+    pub shortenings_refused: usize,
 }
 
 impl Solved {

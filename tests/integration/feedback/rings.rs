@@ -13,6 +13,7 @@ fn every_ring_is_certified() {
         let solved = solve(&cell);
         assert!(solved.failure.is_none(), "ring {k}: {:?}", solved.failure);
         assert_certified_within_limits(&cell, &solved);
+        assert_eq!(solved.shortenings_refused, 0, "ring {k}");
     }
 }
 

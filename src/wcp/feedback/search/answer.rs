@@ -107,6 +107,7 @@ impl Search<'_> {
             times: self.times,
             nodes: self.checked,
             found_after: self.best.map(|_| self.best_at),
+            shortenings_refused: self.shortenings_refused,
         }
     }
 }

@@ -222,6 +222,8 @@ struct Search<'a> {
     /// with nodes still queued (its share of the budget spent, or its patience): the
     /// second's share after that.
     second_pass_end: Option<usize>,
+    /// Shortened answers the whole check refused (see [`Solved::shortenings_refused`]).
+    shortenings_refused: usize,
 }
 
 /// Solves the cell by searching over remedies (see the module documentation).
@@ -283,6 +285,7 @@ impl<'a> Search<'a> {
             repairs: Vec::new(),
             second_pass: false,
             second_pass_end: None,
+            shortenings_refused: 0,
         }
     }
 }

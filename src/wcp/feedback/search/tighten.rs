@@ -105,8 +105,13 @@ impl Search<'_> {
         // Ways given back for a wait late, then early: each order wins on some cells. Every
         // shortening reads only its own schedule, so all are made at once and taken in
         // order, the answer first (under a time limit, the one most likely to give it).
+        // Without waits the two orders are one (`tighten`'s `waiting` stays false).
+        let orders: &[bool] = match self.opts.search.remedies.wait {
+            true => &[false, true],
+            false => &[false],
+        };
         let jobs: Vec<(usize, usize, bool)> = (self.incumbents.iter().rev())
-            .flat_map(|&(id, found_at)| [false, true].map(|early| (id, found_at, early)))
+            .flat_map(|&(id, found_at)| orders.iter().map(move |&early| (id, found_at, early)))
             .collect();
         let deadline = self.prepared.deadline;
         let clock = Instant::now();
@@ -170,6 +175,7 @@ impl Search<'_> {
             prepared: node.prepared.clone(),
         };
         let child = self.add(child);
+        self.shortenings_refused += usize::from(!t.free);
         t.free.then_some(child)
     }
 
@@ -207,6 +213,9 @@ impl Search<'_> {
             let mut order: Vec<usize> = (0..robots.len()).collect();
             order.sort_by(|&a, &b| robots[b].end.total_cmp(&robots[a].end).then(a.cmp(&b)));
             for r in order {
+                if steps >= MAX_STEPS {
+                    break;
+                }
                 let draft = Draft {
                     id,
                     routes,
@@ -229,9 +238,6 @@ impl Search<'_> {
                 legs = with_leg(&legs, r, slack.leg, with_excess(&legs, r, slack, after));
                 robots[r] = Arc::new(s);
                 changed = true;
-                if steps >= MAX_STEPS {
-                    break;
-                }
             }
             let draft = Draft {
                 id,
