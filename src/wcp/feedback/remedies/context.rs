@@ -22,8 +22,8 @@ pub(crate) struct Ctx<'a> {
     /// A changed robot that ends at or after this makes a child the search drops (it
     /// cannot beat the best certified schedule): the remedies stop refining it.
     pub cap: f64,
-    /// Whether a robot on its way may pull in at a passing place (the search's second
-    /// pass, see `step_aside::pass_aside`).
+    /// Whether a robot on its way may pull in at a passing place, and two robots that meet
+    /// keep to lanes (the search's second pass, see `step_aside::pass_aside` and `lanes`).
     pub passing: bool,
 }
 
@@ -64,7 +64,7 @@ impl<'a> Ctx<'a> {
         Ctx { cap, ..self }
     }
 
-    /// This context with passing places offered or not (see [`Ctx::passing`]).
+    /// This context with passing places and lanes offered or not (see [`Ctx::passing`]).
     pub fn passing(self, passing: bool) -> Self {
         Ctx { passing, ..self }
     }
