@@ -5,7 +5,9 @@
 //! the collision. So a candidate is judged on a window: from the changed leg's start to its
 //! end (the task it leads to included), with both trajectories cut to that window, and the
 //! checker must prove the pair at least δ apart throughout. What happens after the window is
-//! the next round's business.
+//! the next round's business. The shortening of an answer (`search/tighten.rs`) asks the
+//! same of longer windows, from the changed leg's start to the later of the two robots'
+//! ends, and checks its result whole.
 
 use crate::cell::{Cell, RobotKind};
 use crate::collision::{check, Body, CheckOptions, Scene, Verdict};
