@@ -98,6 +98,14 @@ fn robots_crossing_a_wide_corridor_keep_to_their_lanes() {
         "{}",
         without.schedule.makespan
     );
+    // Lanes alone bring the second pass back along the answer's way, as passing places
+    // do: without passing places, still 29.005 (31.035 if the second pass ignored lanes).
+    let alone = solve_with(&cell, &none_of(&["pass-aside"]));
+    assert!(
+        (alone.schedule.makespan - 29.005).abs() < 1e-3,
+        "{}",
+        alone.schedule.makespan
+    );
     // Both sides are tried, the one that ends sooner kept: on cell 4 the second (the first
     // would give 28.573).
     solved_at(ConflictKind::CorridorWide, 4, 28.506);
