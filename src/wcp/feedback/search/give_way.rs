@@ -205,19 +205,26 @@ mod tests {
     /// What [`Search::give_way`] makes of the certified schedule of `cell(z)`, and whether
     /// what it gives keeps every pair of robots apart (each robot on its new plan).
     fn given_way(z: Option<([f64; 2], [f64; 2])>) -> (Option<GiveWay>, bool) {
-        let cell = crate::cell::parse_cell(&cell(z), "test.json".as_ref())
+        let n = if z.is_some() { 3 } else { 2 };
+        given_way_in(&cell(z), (0..n).map(|r| vec![r]).collect(), (1, 0, 4.0))
+    }
+
+    /// The same for the schedule of the cell `json` where robot `r` does the tasks
+    /// `routes[r]` (indices in the file) and `waiter` waits `wait` before its leg `leg`.
+    fn given_way_in(
+        json: &str,
+        routes: Vec<Vec<usize>>,
+        (waiter, leg, wait): (usize, usize, f64),
+    ) -> (Option<GiveWay>, bool) {
+        let cell = crate::cell::parse_cell(json, "test.json".as_ref())
             .unwrap()
             .cell;
         let opts = SolveOptions::default();
         let prepared = prepare(&cell, &opts, &()).unwrap();
         let mut search = Search::new(&cell, &prepared, &opts, StageTimes::default(), 0.0);
         let n = cell.robots.len();
-        let routes: Vec<Vec<usize>> = (0..n).map(|r| vec![r]).collect();
-        let wait = Leg {
-            wait: 4.0,
-            pieces: None,
-        };
-        let legs = with_leg(&default_legs(n), 1, 0, wait);
+        let wait = Leg { wait, pieces: None };
+        let legs = with_leg(&default_legs(n), waiter, leg, wait);
         let build =
             |r: usize| RobotSchedule::build(&cell, r, &routes[r], &legs[r], &prepared.moves);
         let robots: Vec<Arc<RobotSchedule>> = (0..n).map(|r| Arc::new(build(r).unwrap())).collect();
@@ -225,7 +232,7 @@ mod tests {
         let node = super::super::Node::by_hand(root, &routes, legs.clone(), robots.clone());
         let waits = search.add(node);
         search.check_all(&[waits], &());
-        assert_eq!(search.best, Some(waits), "Y's wait lets the others by");
+        assert_eq!(search.best, Some(waits), "the wait lets the others by");
         let draft = Draft {
             id: waits,
             routes: &routes,
@@ -261,12 +268,15 @@ mod tests {
 
     /// With Z, both X and Z are in Y's way when Y does not wait at all: neither is asked
     /// to let Y through alone (Y would still meet the other); a shorter wait that clears
-    /// both is the other shortenings' business.
+    /// both is the other shortenings' business. Z crosses Y's way while Y is at a sample
+    /// (settled without a check), or, a metre to the west, only between samples.
     #[test]
     fn a_robot_is_let_through_only_where_one_alone_is_in_its_way() {
-        let (g, apart) = given_way(Some(([-3.0, -2.0], [3.0, -2.0])));
-        assert!(apart);
-        assert!(g.is_none(), "{:?}", g.map(|g| (g.cut, g.y, g.wait)));
+        for z in [([-3.0, -2.0], [3.0, -2.0]), ([-4.0, -2.0], [2.0, -2.0])] {
+            let (g, apart) = given_way(Some(z));
+            assert!(apart, "{z:?}");
+            assert!(g.is_none(), "{z:?}: {:?}", g.map(|g| (g.cut, g.y, g.wait)));
+        }
     }
 
     /// Z crosses X's home twice, on its way to and from its task beside it: X let through
@@ -275,5 +285,52 @@ mod tests {
     fn the_robot_that_waits_stays_clear_of_the_others() {
         let (_, apart) = given_way(Some(([-5.0, -1.5], [-5.0, 1.5])));
         assert!(apart);
+    }
+
+    /// X (from (-5, 0) to (5, 0) and back) crosses Y's way home from its first task, and Y
+    /// waits 2 s there; Z passes over X's task place 1.3-2.8 s after X left it, before Y's
+    /// wait starts. Without Z, X waits at its task for Y instead; with Z it cannot (Z would
+    /// run into it), and the check of X against Z must start where X's wait does, not
+    /// where Y's slack does.
+    #[test]
+    fn the_robot_that_waits_is_checked_from_its_own_wait() {
+        let square = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
+        let json = |with_z: bool| {
+            let mut robots = vec![
+                format!(r#"{{"name": "X", "home": [-5, 0, 0], {square}}}"#),
+                format!(r#"{{"name": "Y", "home": [0, 1.5, 0], {square}}}"#),
+            ];
+            let mut tasks = vec![
+                r#"{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]}"#,
+                r#"{"name": "y1", "at": [0, -1.2, 0], "duration": 12.0, "robots": ["Y"]}"#,
+                r#"{"name": "y2", "at": [0, 8, 0], "duration": 1.0, "robots": ["Y"]}"#,
+            ];
+            if with_z {
+                robots.push(format!(
+                    r#"{{"name": "Z", "home": [5, -13.3, 0], {square}}}"#
+                ));
+                tasks.push(r#"{"name": "z", "at": [5, 1.5, 0], "duration": 1.0, "robots": ["Z"]}"#);
+            }
+            format!(
+                r#"{{"delta": 0.01, "robots": [{}], "tasks": [{}]}}"#,
+                robots.join(", "),
+                tasks.join(", ")
+            )
+        };
+        let routes = |with_z: bool| {
+            let mut r = vec![vec![0], vec![1, 2]];
+            if with_z {
+                r.push(vec![3]);
+            }
+            r
+        };
+        let (g, apart) = given_way_in(&json(false), routes(false), (1, 1, 2.0));
+        let g = g.expect("without Z, X lets Y through");
+        assert!(apart);
+        assert_eq!((g.r, g.y, g.m), (1, 0, 1));
+        let (g, apart) = given_way_in(&json(true), routes(true), (1, 1, 2.0));
+        assert!(apart, "X and Z kept apart");
+        assert!(g.is_none(), "{:?}", g.map(|g| (g.y, g.m, g.wait)));
     }
 }
