@@ -313,31 +313,56 @@ pub(super) fn apart(
     })
 }
 
-/// Whether rigid robot `x` at `pose` keeps more than `margin` from every fixture, part by part.
-pub(super) fn clear_of_fixtures(
-    ctx: &Ctx,
-    x: usize,
-    pose: crate::motion::Pose,
-    margin: f64,
-) -> bool {
-    let tol = WalkTolerances::default();
-    let reach = ctx.cell.rigid(x).shape.radius() + margin;
-    let mut fixed = (ctx.moves.obstacles().iter()).filter_map(|o| match &o.motion {
-        crate::motion::Motion::Fixed(at) => Some((o, *at)),
-        _ => None,
-    });
-    fixed.all(|(o, at)| {
-        let parts = (o.parts.as_ref()).map_or(std::slice::from_ref(&o.shape), |p| p.parts());
-        parts.iter().all(|part| {
-            let other = Posed::new(part, at.pos.x, at.pos.y, at.theta);
-            ctx.cell.rigid(x).pieces().iter().all(|piece| {
-                let posed = Posed::new(piece, pose.pos.x, pose.pos.y, pose.theta);
-                // Far from the part's disc: no closest features needed.
-                (pose.pos - at.pos).norm() > part.radius() + reach
-                    || closest_features(&posed, &other, None, &tol).distance > margin
+/// Every fixture part where it stands, with a disc about its vertices: a pose farther from
+/// a part than its disc and the robot's radius needs no closest features. Built once for a
+/// remedy that tries many poses.
+pub(super) struct FixtureDiscs<'a> {
+    parts: Vec<(Posed<'a>, Vec2, f64)>,
+}
+
+impl<'a> FixtureDiscs<'a> {
+    pub(super) fn of(ctx: &Ctx<'a>) -> Self {
+        let parts = (ctx.moves.obstacles().iter())
+            .filter_map(|o| match &o.motion {
+                crate::motion::Motion::Fixed(at) => Some((o, *at)),
+                _ => None,
+            })
+            .flat_map(|(o, at)| {
+                let parts =
+                    (o.parts.as_ref()).map_or(std::slice::from_ref(&o.shape), |p| p.parts());
+                parts.iter().map(move |q| {
+                    let posed = Posed::new(q, at.pos.x, at.pos.y, at.theta);
+                    let corners: Vec<Vec2> = (0..posed.len()).map(|k| posed.vertex(k)).collect();
+                    let centre = corners.iter().sum::<Vec2>() / corners.len() as f64;
+                    let reach = (corners.iter())
+                        .map(|c| (c - centre).norm())
+                        .fold(0.0, f64::max);
+                    (posed, centre, reach)
+                })
+            })
+            .collect();
+        FixtureDiscs { parts }
+    }
+
+    /// Whether rigid robot `x` of `cell` at `pose` keeps more than `margin` from every
+    /// fixture, part by part (a robot of parts may stand in a bay its hull would not fit).
+    pub(super) fn clear(
+        &self,
+        cell: &Cell,
+        x: usize,
+        pose: crate::motion::Pose,
+        margin: f64,
+    ) -> bool {
+        let tol = WalkTolerances::default();
+        let reach = cell.rigid(x).shape.radius() + margin;
+        cell.rigid(x).pieces().iter().all(|piece| {
+            let posed = Posed::new(piece, pose.pos.x, pose.pos.y, pose.theta);
+            (self.parts.iter()).all(|(other, centre, disc)| {
+                (pose.pos - centre).norm() > disc + reach
+                    || closest_features(&posed, other, None, &tol).distance > margin
             })
         })
-    })
+    }
 }
 
 /// How far a robot's body reaches from the point it is placed by: a rigid robot's radius;

@@ -10,8 +10,8 @@
 //! child, and like every child it clears the collision it answers.
 
 use super::context::{
-    body_radius, by_motion, clear_of_fixtures, earliest, leg_nodes, leg_window, pieces_of,
-    same_path, Child, Ctx, Side, View,
+    body_radius, by_motion, earliest, leg_nodes, leg_window, pieces_of, same_path, Child, Ctx,
+    FixtureDiscs, Side, View,
 };
 use crate::geometry::{convex_hull, ConvexPolygon, Vec2};
 use crate::wcp::feedback::clearing::clears;
@@ -66,6 +66,7 @@ pub(super) fn lanes(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
     // radii from it, `s` the side x keeps to: most ways one robot wide are told so without
     // a plan. And only where they would not fit farther apart: in the open a detour of one
     // suffices, and lanes there only add plans.
+    let fixtures = FixtureDiscs::of(ctx);
     let beside = |s: f64, k: f64| {
         let margin = 2.0 * ctx.cell.delta;
         let at = |r: usize, sign: f64| {
@@ -76,8 +77,8 @@ pub(super) fn lanes(ctx: &Ctx, view: &View, side: &Side) -> Option<Child> {
                 ..pose
             }
         };
-        clear_of_fixtures(ctx, x, at(x, 1.0), margin)
-            && clear_of_fixtures(ctx, y, at(y, -1.0), margin)
+        fixtures.clear(ctx.cell, x, at(x, 1.0), margin)
+            && fixtures.clear(ctx.cell, y, at(y, -1.0), margin)
     };
     let fits = beside(1.0, 1.0) || beside(-1.0, 1.0);
     if !fits || beside(1.0, OPEN) && beside(-1.0, OPEN) {

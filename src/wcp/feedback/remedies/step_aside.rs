@@ -3,10 +3,10 @@
 
 use super::context::{
     apart, body_radius, by_parking, child, earliest, horizons, least_clearing, leg_nodes,
-    leg_window, occupancy, Child, Ctx, Side, View,
+    leg_window, occupancy, Child, Ctx, FixtureDiscs, Side, View,
 };
-use crate::geometry::{closest_features, Posed, Vec2, WalkTolerances};
-use crate::motion::{Motion, Pose};
+use crate::geometry::Vec2;
+use crate::motion::Pose;
 use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::leg;
 use crate::wcp::moves::node_pose;
@@ -126,45 +126,14 @@ fn free_poses<'a>(
         .map(|s| s.pos)
         .chain([ys.pose_at(t0).pos, ys.pose_at(t1).pos])
         .collect();
-    // Every fixture part where it stands, with a disc about its vertices: a pose farther
-    // from it than the disc and the robot's radius needs no closest features.
-    let fixtures: Vec<(Posed, Vec2, f64)> = (ctx.moves.obstacles().iter())
-        .filter_map(|o| match &o.motion {
-            Motion::Fixed(at) => Some((o, *at)),
-            _ => None,
-        })
-        .flat_map(|(o, at)| {
-            let pieces = (o.parts.as_ref()).map_or(std::slice::from_ref(&o.shape), |p| p.parts());
-            pieces.iter().map(move |q| {
-                let posed = Posed::new(q, at.pos.x, at.pos.y, at.theta);
-                let corners: Vec<Vec2> = (0..posed.len()).map(|k| posed.vertex(k)).collect();
-                let centre = corners.iter().sum::<Vec2>() / corners.len() as f64;
-                let reach = corners
-                    .iter()
-                    .map(|c| (c - centre).norm())
-                    .fold(0.0, f64::max);
-                (posed, centre, reach)
-            })
-        })
-        .collect();
-    let tol = WalkTolerances::default();
+    let fixtures = FixtureDiscs::of(ctx);
     let pieces = cell.rigid(x).pieces();
-    // Part by part: a robot of parts may park inside a bay its hull would not fit.
-    let clear_of_fixtures = move |p: Pose| {
-        pieces.iter().all(|piece| {
-            let posed = Posed::new(piece, p.pos.x, p.pos.y, p.theta);
-            fixtures.iter().all(|(other, centre, reach)| {
-                (p.pos - centre).norm() > reach + rx + 2.0 * delta
-                    || closest_features(&posed, other, None, &tol).distance > 2.0 * delta
-            })
-        })
-    };
     tried.filter(move |&p| {
         let away = match &swept {
             Some(region) => apart(&[(pieces, p)], region, 2.0 * delta),
             None => (passes.iter()).all(|g| (g - p.pos).norm() > rx + ry + 2.0 * delta),
         };
-        away && clear_of_fixtures(p)
+        away && fixtures.clear(cell, x, p, 2.0 * delta)
     })
 }
 
