@@ -239,6 +239,7 @@ where
 mod tests {
     use super::super::context::TestCell;
     use super::*;
+    use crate::geometry::{closest_features, Posed, WalkTolerances};
 
     /// A parking pose keeps 2δ of clearance from where the other robot passes, as the
     /// checker's δ needs on both sides: a pose only δ beyond the two radii is refused, one
