@@ -321,6 +321,7 @@ pub(super) struct FixtureDiscs<'a> {
 }
 
 impl<'a> FixtureDiscs<'a> {
+    /// The cell's fixed obstacles, from `ctx`'s store of moves.
     pub(super) fn of(ctx: &Ctx<'a>) -> Self {
         let parts = (ctx.moves.obstacles().iter())
             .filter_map(|o| match &o.motion {
