@@ -12,7 +12,7 @@ use workcell::cell::{
     load_blind_sequences, load_cell, load_sequences, scene_document, Cell, InputError,
 };
 use workcell::view;
-use workcell::wcp::remedy_json::legs_json;
+use workcell::wcp::legs_json::legs_json;
 use workcell::wcp::report::{
     collision_json, configurations_json, rounds_json, schedule_json, sequences_json, summary,
     waits_json, ResultJson, StagesJson,

@@ -1,7 +1,8 @@
 //! A robot's lane of a chart: its activities as bars, each of a kind with its colour, from a
 //! solve result's segments and changes or, for a scene's robot, from its samples alone.
 
-use crate::wcp::remedy_json::{ChangeJson, LegJson, PieceJson};
+use crate::wcp::legs_json::{LegJson, PieceJson};
+use crate::wcp::remedy_json::ChangeJson;
 use crate::wcp::report::{ResultJson, SegmentJson};
 use serde::Serialize;
 
@@ -158,7 +159,7 @@ mod tests {
     }
 
     fn go(scale: f64) -> PieceJson {
-        use crate::wcp::remedy_json::GoJson;
+        use crate::wcp::legs_json::GoJson;
         PieceJson::Go {
             go: GoJson {
                 primitives: Vec::new(),

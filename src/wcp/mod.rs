@@ -24,6 +24,7 @@ mod moves;
 mod options;
 mod prepare;
 
+pub mod legs_json;
 pub mod remedy_json;
 pub mod report;
 mod schedule;

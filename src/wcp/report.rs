@@ -3,9 +3,10 @@
 
 use super::configurations::Assignment;
 use super::feedback::{describe, Iteration};
+use super::legs_json::LegJson;
 use super::moves::node_name;
 use super::prepare::StageTimes;
-use super::remedy_json::{change_json, remedy_name, remedy_text, ChangeJson, LegJson};
+use super::remedy_json::{change_json, remedy_name, remedy_text, ChangeJson};
 use super::schedule::{Activity, Collision, Delay, Schedule};
 use super::sequencer::task_node;
 use crate::cell::Cell;

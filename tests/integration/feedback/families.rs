@@ -166,7 +166,7 @@ fn the_search_is_the_same_on_one_two_and_four_threads() {
     let run = |threads: usize| {
         on_threads(threads, || {
             let solved = solve_with(&cell, &opts);
-            let legs = wcp::remedy_json::legs_json(&cell, &solved.routes, &solved.legs);
+            let legs = wcp::legs_json::legs_json(&cell, &solved.routes, &solved.legs);
             (
                 solved.schedule.makespan.to_bits(),
                 solved.routes.clone(),

@@ -17,7 +17,7 @@ use crate::motion::tool_pose;
 use crate::planning::{ArmModel, JointMove, JointPathSettings, PlannedMove};
 use crate::wcp::feedback::{Remedy, RemedyKind};
 use crate::wcp::legs::{leg, Piece};
-use crate::wcp::remedy_json::rests;
+use crate::wcp::legs_json::rests;
 use crate::wcp::schedule::{joints_at, Activity};
 use std::sync::Arc;
 
