@@ -172,15 +172,17 @@ mod tests {
     use crate::wcp::prepare::{prepare, StageTimes};
     use std::sync::Arc;
 
+    /// Every robot's body and limits: a square of 0.7.
+    const SQUARE: &str = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
+             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
+
     /// X crosses from (-5, 0) to its task at (5, 0) and back; Y goes from (0, -5) to its
     /// task at (0, 5), 9 s long, after a wait of 4 s at home that lets X by; Z, when given,
     /// goes from its home to its task and back.
     fn cell(z: Option<([f64; 2], [f64; 2])>) -> String {
-        let square = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
-             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
         let mut robots = vec![
-            format!(r#"{{"name": "X", "home": [-5, 0, 0], {square}}}"#),
-            format!(r#"{{"name": "Y", "home": [0, -5, 0], {square}}}"#),
+            format!(r#"{{"name": "X", "home": [-5, 0, 0], {SQUARE}}}"#),
+            format!(r#"{{"name": "Y", "home": [0, -5, 0], {SQUARE}}}"#),
         ];
         let mut tasks = vec![
             r#"{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]}"#.to_owned(),
@@ -189,7 +191,7 @@ mod tests {
         if let Some((home, at)) = z {
             let [(hx, hy), (ax, ay)] = [home, at].map(|p| (p[0], p[1]));
             robots.push(format!(
-                r#"{{"name": "Z", "home": [{hx}, {hy}, 0], {square}}}"#
+                r#"{{"name": "Z", "home": [{hx}, {hy}, 0], {SQUARE}}}"#
             ));
             tasks.push(format!(
                 r#"{{"name": "z", "at": [{ax}, {ay}, 0], "duration": 1.0, "robots": ["Z"]}}"#
@@ -294,12 +296,10 @@ mod tests {
     /// where Y's slack does.
     #[test]
     fn the_robot_that_waits_is_checked_from_its_own_wait() {
-        let square = r#""shape": [[-0.35, -0.35], [0.35, -0.35], [0.35, 0.35], [-0.35, 0.35]],
-             "max_speed": 1.0, "max_accel": 2.0, "max_turn_rate": 1.5"#;
         let json = |with_z: bool| {
             let mut robots = vec![
-                format!(r#"{{"name": "X", "home": [-5, 0, 0], {square}}}"#),
-                format!(r#"{{"name": "Y", "home": [0, 1.5, 0], {square}}}"#),
+                format!(r#"{{"name": "X", "home": [-5, 0, 0], {SQUARE}}}"#),
+                format!(r#"{{"name": "Y", "home": [0, 1.5, 0], {SQUARE}}}"#),
             ];
             let mut tasks = vec![
                 r#"{"name": "x", "at": [5, 0, 0], "duration": 1.0, "robots": ["X"]}"#,
@@ -308,7 +308,7 @@ mod tests {
             ];
             if with_z {
                 robots.push(format!(
-                    r#"{{"name": "Z", "home": [5, -13.3, 0], {square}}}"#
+                    r#"{{"name": "Z", "home": [5, -13.3, 0], {SQUARE}}}"#
                 ));
                 tasks.push(r#"{"name": "z", "at": [5, 1.5, 0], "duration": 1.0, "robots": ["Z"]}"#);
             }
