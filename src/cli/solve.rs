@@ -1,6 +1,7 @@
 //! `workcell solve` and `workcell evaluate`: schedules, their checks and their exports.
 
 use super::trace::Trace;
+use clap::builder::PossibleValuesParser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -79,9 +80,9 @@ pub struct FeedbackArgs {
     /// waits), step-aside, pass-aside (a robot on its way pulls in at a passing place beside
     /// it, in the search's second pass), lanes (two robots that meet moving keep to opposite
     /// sides where both fit side by side, in the second pass), tune (two robots' moves timed
-    /// together, for a pair that collides again), convoy (every robot of a closed corridor round it together),
-    /// reconfigure (an arm's; default: all but reconfigure).
-    #[arg(long, value_delimiter = ',', value_parser = ["resequence", "wait", "pause", "slow", "detour", "step-aside", "pass-aside", "lanes", "tune", "convoy", "reconfigure"])]
+    /// together, for a pair that collides again), convoy (every robot of a closed corridor
+    /// round it together), reconfigure (an arm's; default: all but reconfigure).
+    #[arg(long, value_delimiter = ',', value_parser = PossibleValuesParser::new(Remedies::NAMES))]
     remedies: Option<Vec<String>>,
 }
 

@@ -450,3 +450,21 @@ fn a_task_pose_overlapping_a_fixture_is_told_as_such() {
         );
     }
 }
+
+/// An unknown remedy is refused (exit 2), with every name the search knows listed: the
+/// command line offers the library's names, not a copy of them.
+#[test]
+fn an_unknown_remedy_is_refused_with_every_name_listed() {
+    let out = workcell(&[
+        "solve",
+        &shipped("paper-cell.json"),
+        "--remedies",
+        "wait,bogus",
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let err = text(&out.stderr);
+    assert!(err.contains("bogus"), "{err}");
+    for name in workcell::wcp::Remedies::NAMES {
+        assert!(err.contains(name), "{name} not offered: {err}");
+    }
+}
